@@ -1,0 +1,35 @@
+#pragma once
+// Discrete differential geometry of the current surface (MODEL.md sections 1 and 4):
+//  - vertex normals nu: area-weighted average of the cell normals around each
+//    vertex (paper eq. 6.5), realised as sum_cells integral n phi_i ds, normalised;
+//  - mean curvature H (sum of principal curvatures): the weak form of
+//    lap_s X = H n, i.e. (Hvec, psi) = -(grad_s X, grad_s psi) for the Q1
+//    mean-curvature vector, then H_i = Hvec_i . nu_i at each vertex;
+//  - Gaussian curvature K: the L2 projection of ((tr grad_s nu)^2 - |grad_s nu|^2)/2.
+
+#include <membrane/surface/surface.h>
+
+namespace Membrane
+{
+  struct Geometry
+  {
+    Vector normal;          ///< unit vertex normals (vector space, ghosted)
+    Vector mean_curvature;  ///< H (scalar space, ghosted)
+    Vector gauss_curvature; ///< K (scalar space, ghosted)
+  };
+
+  /// Vertex normals of the current surface (owned vector of the vector space).
+  Vector compute_vertex_normals(const Surface &surface);
+
+  /// Mean curvature from the weak Laplace-Beltrami of X, projected on `normal`.
+  Vector compute_mean_curvature(const Surface &surface, const Vector &normal_ghosted);
+
+  /// L2 projection of K = ((tr grad_s nu)^2 - |grad_s nu|^2)/2.
+  Vector compute_gauss_curvature(const Surface &surface, const Vector &normal_ghosted);
+
+  /// All three, ghosted.
+  Geometry compute_geometry(const Surface &surface);
+
+  /// Integral of a scalar-space field over the current surface.
+  double integrate(const Surface &surface, const Vector &scalar_ghosted);
+} // namespace Membrane

@@ -1,0 +1,59 @@
+#pragma once
+// The membrane surface: a reference mesh (the periodic unit square in the plane
+// z = 0, or any closed surface mesh) and a Q1 displacement D, so that
+// X = X_ref + D. The current surface is seen through a MappingQEulerian, which
+// makes FEValues<2,3> compute surface gradients, normals and ds on Gamma = X(U).
+
+#include <membrane/surface/field_space.h>
+#include <membrane/types.h>
+
+#include <deal.II/fe/mapping_q_eulerian.h>
+
+#include <memory>
+
+namespace Membrane
+{
+  /// Split n cells per side into n = coarse * 2^refinements with coarse odd, so
+  /// that p4est works on the fewest trees.
+  std::pair<unsigned int, unsigned int> factor_cells_per_side(unsigned int cells_per_side);
+
+  /// The periodic unit square [0,1]^2 x {0} with colorized boundary ids
+  /// (0|1 at u1 = 0|1, 2|3 at u2 = 0|1) and periodicity registered with p4est.
+  void make_periodic_unit_square(Triangulation &triangulation, unsigned int cells_per_side);
+
+  class Surface
+  {
+  public:
+    /// `triangulation` must outlive the surface; `periodic` says whether the
+    /// unit-square identification applies (false for closed surfaces).
+    Surface(const Triangulation &triangulation, bool periodic);
+
+    /// Rebuild spaces after a mesh change; the displacement is reset to zero.
+    void setup();
+
+    const FieldSpace &vector_space() const { return vectors; }
+    const FieldSpace &scalar_space() const { return scalars; }
+    bool              periodic() const { return is_periodic; }
+
+    /// Replace the displacement (owned vector; constraints are applied here).
+    void set_displacement(const Vector &displacement_owned);
+    const Vector &displacement() const { return displacement_ghosted; }
+
+    /// The map U -> Gamma through which every integral on the surface is taken.
+    const dealii::Mapping<dim, spacedim> &mapping() const { return *eulerian; }
+    const dealii::Mapping<dim, spacedim> &reference_mapping() const;
+
+    /// Total area of the current surface.
+    double area() const;
+    /// Largest cell diameter on the current surface (global).
+    double max_cell_diameter() const;
+
+  private:
+    const Triangulation &triangulation;
+    const bool           is_periodic;
+    FieldSpace           vectors;
+    FieldSpace           scalars;
+    Vector               displacement_ghosted;
+    std::unique_ptr<dealii::MappingQEulerian<dim, Vector, spacedim>> eulerian;
+  };
+} // namespace Membrane

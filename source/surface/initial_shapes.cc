@@ -1,0 +1,140 @@
+#include <membrane/surface/initial_shapes.h>
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/numbers.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <sstream>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  namespace
+  {
+    class NormalDisplacement : public Function<spacedim>
+    {
+    public:
+      explicit NormalDisplacement(std::function<double(const Point<spacedim> &)> height)
+        : Function<spacedim>(spacedim)
+        , height(std::move(height))
+      {}
+      double value(const Point<spacedim> &p, const unsigned int component) const override
+      {
+        return component == 2 ? height(p) : 0.0;
+      }
+
+    private:
+      std::function<double(const Point<spacedim> &)> height;
+    };
+  } // namespace
+
+  std::vector<CosineMode> parse_cosine_modes(const std::string &text, const std::string &entry)
+  {
+    std::vector<CosineMode> modes;
+    std::stringstream       all(text);
+    std::string             item;
+    while (std::getline(all, item, ';'))
+      {
+        if (item.find_first_not_of(" \t") == std::string::npos)
+          continue;
+        std::istringstream in(item);
+        CosineMode         mode{0, 0, 0, 0};
+        in >> mode.amplitude >> mode.k1 >> mode.k2;
+        AssertThrow(!in.fail(), ExcMessage("Entry <" + entry + ">: cannot read the mode <" + item +
+                                           ">; expected 'amplitude k1 k2 [phase]' with integer k1, k2"));
+        if (!(in >> mode.phase))
+          mode.phase = 0;
+        modes.push_back(mode);
+      }
+    return modes;
+  }
+
+  void set_displacement(Surface &surface, const Function<spacedim> &displacement)
+  {
+    Vector d = surface.vector_space().make_owned();
+    VectorTools::interpolate(surface.reference_mapping(), surface.vector_space().dof_handler(), displacement, d);
+    surface.set_displacement(d);
+  }
+
+  double bump_profile(const Point<spacedim> &p, const double radius)
+  {
+    const double rho = std::hypot(p[0] - 0.5, p[1] - 0.5);
+    return rho < radius ? 1.0 + std::cos(numbers::PI * rho / radius) : 0.0;
+  }
+
+  double set_bump(Surface &surface, const double radius, const double target_area)
+  {
+    const auto area_for = [&](const double amplitude) {
+      set_displacement(surface, NormalDisplacement([=](const Point<spacedim> &p) {
+                         return amplitude * bump_profile(p, radius);
+                       }));
+      return surface.area();
+    };
+    const double flat_area = area_for(0.0);
+    AssertThrow(target_area >= flat_area,
+                ExcMessage("Entry <Bump area>: the target area " + std::to_string(target_area) +
+                           " is below the flat patch area " + std::to_string(flat_area)));
+    double low = 0, high = 0.1;
+    while (area_for(high) < target_area)
+      {
+        high *= 2;
+        AssertThrow(high < 1e3, ExcMessage("Entry <Bump area>: target area not reachable"));
+      }
+    // The area is monotone in the amplitude; bisection to round-off.
+    for (unsigned int it = 0; it < 200 && high - low > 1e-15 * high; ++it)
+      {
+        const double mid = 0.5 * (low + high);
+        (area_for(mid) < target_area ? low : high) = mid;
+      }
+    const double amplitude = 0.5 * (low + high);
+    area_for(amplitude);
+    return amplitude;
+  }
+
+  void set_cosine_modes(Surface &surface, const std::vector<CosineMode> &modes)
+  {
+    set_displacement(surface, NormalDisplacement([&](const Point<spacedim> &p) {
+                       double z = 0;
+                       for (const auto &m : modes)
+                         z += m.amplitude * std::cos(2 * numbers::PI * (m.k1 * p[0] + m.k2 * p[1]) + m.phase);
+                       return z;
+                     }));
+  }
+
+  void set_displacement_expression(Surface &surface, const std::string &expression, const std::string &entry)
+  {
+    FunctionParser<2> parser(spacedim);
+    try
+      {
+        parser.initialize("x,y", expression, {{"pi", numbers::PI}});
+      }
+    catch (...)
+      {
+        AssertThrow(false, ExcMessage("Entry <" + entry + ">: cannot parse <" + expression +
+                                      ">; expected three expressions 'Dx; Dy; Dz' in x, y"));
+      }
+    // The displacement must be periodic on the unit square.
+    for (unsigned int i = 0; i <= 16; ++i)
+      for (unsigned int c = 0; c < spacedim; ++c)
+        {
+          const double s = i / 16.0;
+          const double jump = std::max(std::abs(parser.value(Point<2>(0, s), c) - parser.value(Point<2>(1, s), c)),
+                                       std::abs(parser.value(Point<2>(s, 0), c) - parser.value(Point<2>(s, 1), c)));
+          AssertThrow(jump < 1e-10, ExcMessage("Entry <" + entry + ">: the displacement is not periodic on the "
+                                               "unit square (component " + std::to_string(c) +
+                                               " jumps by " + std::to_string(jump) + ")"));
+        }
+    class Lifted : public Function<spacedim>
+    {
+    public:
+      explicit Lifted(const FunctionParser<2> &f) : Function<spacedim>(spacedim), f(f) {}
+      double value(const Point<spacedim> &p, const unsigned int c) const override
+      {
+        return f.value(Point<2>(p[0], p[1]), c);
+      }
+      const FunctionParser<2> &f;
+    };
+    set_displacement(surface, Lifted(parser));
+  }
+} // namespace Membrane

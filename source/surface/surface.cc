@@ -1,0 +1,91 @@
+#include <membrane/surface/surface.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  std::pair<unsigned int, unsigned int> factor_cells_per_side(unsigned int cells_per_side)
+  {
+    AssertThrow(cells_per_side >= 1, ExcMessage("cells per side must be at least 1"));
+    unsigned int refinements = 0;
+    while (cells_per_side % 2 == 0)
+      {
+        cells_per_side /= 2;
+        ++refinements;
+      }
+    return {cells_per_side, refinements};
+  }
+
+  void make_periodic_unit_square(Triangulation &triangulation, const unsigned int cells_per_side)
+  {
+    const auto [coarse, refinements] = factor_cells_per_side(cells_per_side);
+    GridGenerator::subdivided_hyper_cube(triangulation, coarse, 0.0, 1.0, /*colorize=*/true);
+
+    std::vector<GridTools::PeriodicFacePair<typename Triangulation::cell_iterator>> pairs;
+    GridTools::collect_periodic_faces(triangulation, 0, 1, 0, pairs);
+    GridTools::collect_periodic_faces(triangulation, 2, 3, 1, pairs);
+    triangulation.add_periodicity(pairs);
+    triangulation.refine_global(refinements);
+  }
+
+  Surface::Surface(const Triangulation &triangulation, const bool periodic)
+    : triangulation(triangulation)
+    , is_periodic(periodic)
+    , vectors(triangulation, spacedim)
+    , scalars(triangulation, 1)
+  {}
+
+  void Surface::setup()
+  {
+    vectors.setup(is_periodic);
+    scalars.setup(is_periodic);
+    displacement_ghosted = vectors.make_ghosted();
+    eulerian = std::make_unique<MappingQEulerian<dim, Vector, spacedim>>(
+      1, vectors.dof_handler(), displacement_ghosted);
+  }
+
+  const Mapping<dim, spacedim> &Surface::reference_mapping() const
+  {
+    return StaticMappingQ1<dim, spacedim>::mapping;
+  }
+
+  void Surface::set_displacement(const Vector &displacement_owned)
+  {
+    Vector constrained = displacement_owned;
+    vectors.constraints().distribute(constrained);
+    displacement_ghosted = constrained;
+  }
+
+  double Surface::area() const
+  {
+    const QGauss<dim>          quadrature(2);
+    FEValues<dim, spacedim>    fe_values(mapping(), scalars.fe(), quadrature, update_JxW_values);
+    double                     local = 0;
+    for (const auto &cell : scalars.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            local += fe_values.JxW(q);
+        }
+    return Utilities::MPI::sum(local, triangulation.get_communicator());
+  }
+
+  double Surface::max_cell_diameter() const
+  {
+    double local = 0;
+    for (const auto &cell : vectors.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const auto vertices = eulerian->get_vertices(cell);
+          local = std::max({local, vertices[0].distance(vertices[3]), vertices[1].distance(vertices[2])});
+        }
+    return Utilities::MPI::max(local, triangulation.get_communicator());
+  }
+} // namespace Membrane
