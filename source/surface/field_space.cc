@@ -69,6 +69,18 @@ namespace Membrane
       &dofs.get_triangulation(), tria_cell->level(), tria_cell->index(), &dofs);
   }
 
+  std::pair<double, double> global_range(const Vector &vector)
+  {
+    double low = std::numeric_limits<double>::max(), high = -low;
+    for (const auto i : vector.locally_owned_elements())
+      {
+        low  = std::min(low, vector[i]);
+        high = std::max(high, vector[i]);
+      }
+    const MPI_Comm comm = vector.get_mpi_communicator();
+    return {Utilities::MPI::min(low, comm), Utilities::MPI::max(high, comm)};
+  }
+
   void copy_component(const FieldSpace  &from_space,
                       const Vector      &from_ghosted,
                       const unsigned int from_component,

@@ -46,6 +46,9 @@ namespace Membrane
     dealii::IndexSet                      relevant_dofs;
   };
 
+  /// Smallest and largest locally owned entry over all ranks.
+  std::pair<double, double> global_range(const Vector &vector);
+
   /// Copy one component of a Q1 system vector into a (single-component) vector
   /// of another space on the same mesh; `to` is owned, constraints are applied.
   void copy_component(const FieldSpace &from_space,

@@ -1,0 +1,39 @@
+#pragma once
+// Initial order parameter phi0 on the reference vertices.
+//  random:     independent uniform values in [min, max] per vertex. The value at
+//              a vertex is a counter-based hash of (seed, vertex position), so a
+//              run is reproducible and independent of the number of MPI ranks
+//              and of the DoF numbering;
+//  bump:       -1 + a3 (1 + cos(pi rho / R0)) for rho < R0 (MODEL.md section 5);
+//  uniform:    a constant;
+//  expression: a function of the reference point (x, y).
+// With a prescribed mass M = integral phi0 ds (on the initial surface), bump
+// solves for a3 (phi0 is affine in a3); the other types add a constant.
+
+#include <membrane/surface/surface.h>
+
+#include <cstdint>
+#include <string>
+
+namespace Membrane
+{
+  struct InitialPhaseOptions
+  {
+    std::string   type       = "random";
+    double        random_min = -0.1;
+    double        random_max = 0.1;
+    std::uint64_t seed       = 1;
+    double        uniform_value = 0;
+    std::string   expression    = "0";
+    double        bump_radius   = 0.5;
+    double        bump_height   = 0.5; ///< a3 when the mass is not prescribed
+    bool          prescribe_mass = false;
+    double        mass           = 0;
+  };
+
+  /// A uniform number in [0, 1) determined by (seed, point) alone.
+  double hashed_uniform(std::uint64_t seed, const dealii::Point<spacedim> &reference_point);
+
+  /// phi0 as an owned scalar-space vector (constraints applied).
+  Vector make_initial_phase(const Surface &surface, const InitialPhaseOptions &options);
+} // namespace Membrane

@@ -1,0 +1,94 @@
+#include <membrane/app.h>
+#include <membrane/parameters.h>
+#include <membrane/simulator.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <iostream>
+#include <sstream>
+#include <string>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  namespace
+  {
+    const char *usage = "Usage: membrane-flow [--quiet] <input.prm>\n"
+                        "       membrane-flow --print-parameters [text|markdown]\n";
+
+    /// The user-facing part of a deal.II exception text.
+    std::string clean_message(const std::exception &e)
+    {
+      const std::string text = e.what();
+      for (const std::string marker : {"Additional information: \n", "Additional information:\n"})
+        if (const auto pos = text.find(marker); pos != std::string::npos)
+          {
+            std::string info = text.substr(pos + marker.size());
+            if (const auto end = info.find("\n\nStacktrace"); end != std::string::npos)
+              info = info.substr(0, end);
+            while (!info.empty() && (info.back() == '\n' || info.back() == '-'))
+              info.pop_back();
+            return info;
+          }
+      return text;
+    }
+  } // namespace
+
+  int run_application(int argc, char **argv)
+  {
+    const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    std::vector<std::string> args(argv + 1, argv + argc);
+    RunOptions               options;
+    for (int i = 0; i < argc; ++i)
+      options.command_line += (i ? " " : "") + std::string(argv[i]);
+
+    if (!args.empty() && args[0] == "--print-parameters")
+      {
+        ParameterHandler prm;
+        Parameters::declare(prm);
+        if (root)
+          prm.print_parameters(std::cout, args.size() > 1 && args[1] == "markdown" ? ParameterHandler::LaTeX
+                                                                                    : ParameterHandler::PRM);
+        return 0;
+      }
+    std::string input;
+    for (const auto &a : args)
+      if (a == "--quiet")
+        options.quiet = true;
+      else if (a == "--help" || a == "-h" || !input.empty() || a.rfind("--", 0) == 0)
+        {
+          if (root)
+            std::cerr << usage;
+          return a == "--help" || a == "-h" ? 0 : 1;
+        }
+      else
+        input = a;
+    if (input.empty())
+      {
+        if (root)
+          std::cerr << usage;
+        return 1;
+      }
+
+    ParameterHandler prm;
+    Parameters       parameters;
+    try
+      {
+        read_parameter_file(input, prm, parameters);
+        std::ostringstream text;
+        prm.print_parameters(text, ParameterHandler::ShortPRM);
+        options.parameter_text = text.str();
+
+        Simulator         simulator(parameters, options);
+        const std::string stop = simulator.run();
+        return stop == "end time" || stop == "maximum steps" ? 0 : 2;
+      }
+    catch (const std::exception &e)
+      {
+        if (root)
+          std::cerr << "Error: " << clean_message(e) << std::endl;
+        return 1;
+      }
+  }
+} // namespace Membrane

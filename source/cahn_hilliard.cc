@@ -1,0 +1,102 @@
+#include <membrane/cahn_hilliard.h>
+#include <membrane/physics/double_well.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  CahnHilliardSolver::CahnHilliardSolver(const Triangulation &triangulation, const bool periodic)
+    : periodic(periodic)
+    , space(triangulation, 2)
+  {}
+
+  void CahnHilliardSolver::setup()
+  {
+    space.setup(periodic);
+    space.reinit_matrix(matrix);
+    rhs = space.make_owned();
+  }
+
+  void CahnHilliardSolver::assemble(const Surface &surface, const Geometry &geometry, const Material &material,
+                                    const CahnHilliardOptions &options, const double tau, const Vector &phi_old)
+  {
+    matrix = 0;
+    rhs    = 0;
+    const QGauss<dim>       quadrature(2);
+    const UpdateFlags       flags = update_values | update_gradients | update_JxW_values;
+    FEValues<dim, spacedim> fe_values(surface.mapping(), space.fe(), quadrature, flags);
+    FEValues<dim, spacedim> field_values(surface.mapping(), surface.scalar_space().fe(), quadrature, update_values);
+    const FEValuesExtractors::Scalar phi_part(0), potential_part(1);
+
+    const unsigned int n_q = quadrature.size(), n_dofs = space.fe().n_dofs_per_cell();
+    std::vector<double> old(n_q), H(n_q), K(n_q);
+    FullMatrix<double>  local_matrix(n_dofs, n_dofs);
+    dealii::Vector<double> local_rhs(n_dofs);
+    std::vector<types::global_dof_index> dof_indices(n_dofs);
+
+    const double sigma = material.line_tension, xi2 = std::pow(material.transition_length, 2);
+    const double mobility = material.phase_mobility;
+
+    for (const auto &cell : space.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          field_values.reinit(surface.scalar_space().cell(cell));
+          field_values.get_function_values(phi_old, old);
+          field_values.get_function_values(geometry.mean_curvature, H);
+          field_values.get_function_values(geometry.gauss_curvature, K);
+          local_matrix = 0;
+          local_rhs    = 0;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const double S = options.scheme == "stabilized" ? options.stabilization :
+                               options.scheme == "linearized" ? DoubleWell::second_derivative(old[q]) : 0.0;
+              // Explicit part of Y: sigma (f'(phi^m) - S phi^m) + curvature coupling.
+              const double explicit_potential = sigma * (DoubleWell::derivative(old[q]) - S * old[q]) +
+                                                material.curvature_potential(old[q], H[q], K[q]);
+              const double ds = fe_values.JxW(q);
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                {
+                  const double              psi      = fe_values[phi_part].value(i, q);
+                  const Tensor<1, spacedim> grad_psi = fe_values[phi_part].gradient(i, q);
+                  const double              chi      = fe_values[potential_part].value(i, q);
+                  const Tensor<1, spacedim> grad_chi = fe_values[potential_part].gradient(i, q);
+                  for (unsigned int j = 0; j < n_dofs; ++j)
+                    {
+                      const double              phi_j      = fe_values[phi_part].value(j, q);
+                      const Tensor<1, spacedim> grad_phi_j = fe_values[phi_part].gradient(j, q);
+                      const double              Y_j        = fe_values[potential_part].value(j, q);
+                      const Tensor<1, spacedim> grad_Y_j   = fe_values[potential_part].gradient(j, q);
+                      // Mass row (times tau): (phi~, psi) + tau L_phi (grad Y, grad psi).
+                      // Potential row: (Y, chi) - sigma xi^2 (grad phi~, grad chi) - sigma S (phi~, chi).
+                      local_matrix(i, j) += (psi * phi_j + tau * mobility * grad_psi * grad_Y_j + chi * Y_j -
+                                             sigma * xi2 * grad_chi * grad_phi_j - sigma * S * chi * phi_j) * ds;
+                    }
+                  local_rhs(i) += (psi * old[q] + chi * explicit_potential) * ds;
+                }
+            }
+          cell->get_dof_indices(dof_indices);
+          space.constraints().distribute_local_to_global(local_matrix, local_rhs, dof_indices, matrix, rhs);
+        }
+    matrix.compress(VectorOperation::add);
+    rhs.compress(VectorOperation::add);
+  }
+
+  unsigned int CahnHilliardSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
+                                        const CahnHilliardOptions &options, const LinearSolverOptions &solver,
+                                        const double tau, const Vector &phi_old, Vector &phi_new,
+                                        Vector &chemical_potential)
+  {
+    assemble(surface, geometry, material, options, tau, phi_old);
+    Vector solution = space.make_owned();
+    const unsigned int iterations = solve_linear_system(matrix, solution, rhs, solver);
+    space.constraints().distribute(solution);
+    const Vector solution_ghosted = space.ghosted_copy(solution);
+    copy_component(space, solution_ghosted, 0, surface.scalar_space(), phi_new);
+    copy_component(space, solution_ghosted, 1, surface.scalar_space(), chemical_potential);
+    return iterations;
+  }
+} // namespace Membrane

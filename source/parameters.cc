@@ -1,0 +1,208 @@
+#include <membrane/parameters.h>
+#include <membrane/surface/initial_shapes.h>
+
+#include <fstream>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  namespace
+  {
+    const double max_double = std::numeric_limits<double>::max();
+
+    void declare_material(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Material");
+      {
+        prm.enter_subsection("Bending rigidity");
+        declare_modulus_parameters(prm, "kappa", "Bending rigidity (energy; > 0)", 1.0);
+        prm.leave_subsection();
+        prm.enter_subsection("Gaussian rigidity");
+        declare_modulus_parameters(prm, "kappa_G", "Gaussian (saddle-splay) rigidity (energy)", 0.0);
+        prm.leave_subsection();
+        prm.enter_subsection("Spontaneous curvature");
+        declare_modulus_parameters(prm, "H0", "Spontaneous curvature (1/length, sum of principal curvatures; "
+                                           "negative bulges along +n)", 0.0);
+        prm.leave_subsection();
+        prm.declare_entry("Line tension", "450", Patterns::Double(0, max_double),
+                          "sigma: scale of the Cahn-Hilliard energy sigma (xi^2/2 |grad phi|^2 + f(phi)); the "
+                          "sharp-interface line tension is sigma * xi (energy/length^2).");
+        prm.declare_entry("Transition length", "0.03", Patterns::Double(1e-12, max_double),
+                          "xi: width scale of the diffuse domain boundary (length; the patch side is 1). The "
+                          "mesh should resolve it: cell size h <= 1.25 xi.");
+        prm.declare_entry("Shape mobility", "5e-4", Patterns::Double(0, max_double),
+                          "L_X: mobility of the overdamped shape flow dX/dt = -L_X (E_n n + E_t).");
+        prm.declare_entry("Phase mobility", "0.05", Patterns::Double(0, max_double),
+                          "L_phi: mobility of lateral sorting dphi/dt = L_phi lap_s Y.");
+      }
+      prm.leave_subsection();
+    }
+
+    void declare_initial_state(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Mesh");
+      prm.declare_entry("Cells per side", "32", Patterns::Integer(2, 4096),
+                        "Cells along each side of the periodic unit square (the paper: 32, i.e. 1024 vertices).");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Initial shape");
+      prm.declare_entry("Shape", "flat", Patterns::Selection("flat|bump|cosine modes|expression"),
+                        "flat: the unit square; bump: z = a1 (1 + cos(pi rho/R0)) for rho = |u - (1/2,1/2)| < R0 "
+                        "with a1 solved for Bump area; cosine modes: a sum of periodic modes; expression: a "
+                        "displacement 'Dx; Dy; Dz' of the reference point (x, y).");
+      prm.declare_entry("Bump radius", "0.5", Patterns::Double(1e-3, 0.5), "R0: radius of the bump (<= 1/2).");
+      prm.declare_entry("Bump area", "1.3", Patterns::Double(1, max_double),
+                        "Total surface area the bump amplitude a1 is solved for (the patch projects to area 1).");
+      prm.declare_entry("Cosine modes", "0.05 1 1; 0.05 1 -1", Patterns::Anything(),
+                        "'A k1 k2 [phase]; ...': z = sum A cos(2 pi (k1 u1 + k2 u2) + phase), integer k1, k2.");
+      prm.declare_entry("Displacement expression", "0; 0; 0", Patterns::Anything(),
+                        "'Dx; Dy; Dz' in x, y (and pi); must be periodic on the unit square.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Initial phase");
+      prm.declare_entry("Type", "random", Patterns::Selection("random|bump|uniform|expression"),
+                        "random: uniform in [Random min, Random max] per vertex (seeded, independent of the number "
+                        "of MPI ranks); bump: -1 + a3 (1 + cos(pi rho/R0)) on the Initial shape's bump disc; "
+                        "uniform: Uniform value; expression: phi0(x, y).");
+      prm.declare_entry("Random min", "-0.2", Patterns::Double(-1.5, 1.5), "b: lower bound of the random phi0.");
+      prm.declare_entry("Random max", "0.2", Patterns::Double(-1.5, 1.5), "c: upper bound of the random phi0.");
+      prm.declare_entry("Seed", "1", Patterns::Integer(0), "Seed of the random phi0.");
+      prm.declare_entry("Uniform value", "0", Patterns::Double(-1.5, 1.5), "phi0 for Type = uniform.");
+      prm.declare_entry("Expression", "0", Patterns::Anything(), "phi0(x, y) for Type = expression.");
+      prm.declare_entry("Bump height", "0.5", Patterns::Double(0, 2),
+                        "a3 for Type = bump when the mass is not prescribed.");
+      prm.declare_entry("Prescribe mass", "false", Patterns::Bool(),
+                        "Adjust phi0 so that integral phi0 ds equals Mass (bump: solve for a3; others: add a constant).");
+      prm.declare_entry("Mass", "-0.85", Patterns::Double(), "Target integral phi0 ds on the initial surface.");
+      prm.leave_subsection();
+    }
+
+    void declare_numerics(ParameterHandler &prm)
+    {
+      prm.enter_subsection("Time stepping");
+      prm.declare_entry("End time", "0.01", Patterns::Double(0, max_double), "T: the run stops at t = T.");
+      prm.declare_entry("Time step", "1e-4", Patterns::Double(1e-14, max_double), "tau: the time step.");
+      prm.declare_entry("Maximum steps", "1000000", Patterns::Integer(1), "Stop after this many steps.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Cahn-Hilliard");
+      prm.declare_entry("Scheme", "stabilized", Patterns::Selection("stabilized|linearized|explicit"),
+                        "Treatment of f'(phi) in the linear step: stabilized: f'(phi^m) + s (phi - phi^m), energy "
+                        "stable for s >= 9/8 (default); linearized: f'(phi^m) + f''(phi^m)(phi - phi^m); explicit: "
+                        "f'(phi^m) as in the paper (tau limited by the double well).");
+      prm.declare_entry("Stabilization", "1.5", Patterns::Double(0, max_double),
+                        "s of the stabilized scheme (dimensionless, multiplies sigma). s >= max|f''|/2 = 9/8 on "
+                        "[-1, 1] guarantees energy decay; 1.5 covers |phi| <= 1.1.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Linear solver");
+      prm.declare_entry("Type", "direct", Patterns::Selection("direct|gmres"),
+                        "direct: MUMPS (robust; default); gmres: GMRES with block-Jacobi ILU.");
+      prm.declare_entry("Relative tolerance", "1e-10", Patterns::Double(1e-16, 1), "For Type = gmres.");
+      prm.declare_entry("Maximum iterations", "2000", Patterns::Integer(1), "For Type = gmres.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Output");
+      prm.declare_entry("Directory", "results", Patterns::DirectoryName(),
+                        "Where the run writes its fields, statistics, parameters and summary.");
+      prm.declare_entry("Interval", "0", Patterns::Double(0, max_double),
+                        "Time between VTU snapshots (0: every step). The first and last states are always written.");
+      prm.declare_entry("Write VTU", "true", Patterns::Bool(), "Write the PVD/VTU time series of the surface.");
+      prm.leave_subsection();
+    }
+  } // namespace
+
+  void Parameters::declare(ParameterHandler &prm)
+  {
+    declare_initial_state(prm);
+    declare_material(prm);
+    declare_numerics(prm);
+  }
+
+  void Parameters::parse(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mesh");
+    cells_per_side = prm.get_integer("Cells per side");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Initial shape");
+    shape                   = prm.get("Shape");
+    bump_radius             = prm.get_double("Bump radius");
+    bump_area               = prm.get_double("Bump area");
+    cosine_modes            = prm.get("Cosine modes");
+    displacement_expression = prm.get("Displacement expression");
+    if (shape == "cosine modes")
+      AssertThrow(!parse_cosine_modes(cosine_modes, "Initial shape/Cosine modes").empty(),
+                  ExcMessage("Entry <Initial shape/Cosine modes>: Shape = cosine modes needs at least one mode"));
+    prm.leave_subsection();
+
+    prm.enter_subsection("Initial phase");
+    initial_phase.type           = prm.get("Type");
+    initial_phase.random_min     = prm.get_double("Random min");
+    initial_phase.random_max     = prm.get_double("Random max");
+    initial_phase.seed           = prm.get_integer("Seed");
+    initial_phase.uniform_value  = prm.get_double("Uniform value");
+    initial_phase.expression     = prm.get("Expression");
+    initial_phase.bump_radius    = bump_radius;
+    initial_phase.bump_height    = prm.get_double("Bump height");
+    initial_phase.prescribe_mass = prm.get_bool("Prescribe mass");
+    initial_phase.mass           = prm.get_double("Mass");
+    AssertThrow(initial_phase.random_min <= initial_phase.random_max,
+                ExcMessage("Entries <Initial phase/Random min> and <Random max>: need min <= max (got " +
+                           prm.get("Random min") + " > " + prm.get("Random max") + ")"));
+    prm.leave_subsection();
+
+    prm.enter_subsection("Material");
+    for (auto [name, law] : {std::pair{"Bending rigidity", &material.bending_rigidity},
+                             std::pair{"Gaussian rigidity", &material.gaussian_rigidity},
+                             std::pair{"Spontaneous curvature", &material.spontaneous_curvature}})
+      {
+        prm.enter_subsection(name);
+        *law = parse_modulus_law(prm, std::string("Material/") + name);
+        prm.leave_subsection();
+      }
+    material.line_tension      = prm.get_double("Line tension");
+    material.transition_length = prm.get_double("Transition length");
+    material.shape_mobility    = prm.get_double("Shape mobility");
+    material.phase_mobility    = prm.get_double("Phase mobility");
+    for (const double phi : {-1.0, 1.0})
+      AssertThrow(material.bending_rigidity->value(phi) > 0,
+                  ExcMessage("Entry <Material/Bending rigidity>: kappa must be > 0 in both phases (got " +
+                             std::to_string(material.bending_rigidity->value(phi)) + " at phi = " +
+                             std::to_string(phi) + ")"));
+    prm.leave_subsection();
+
+    prm.enter_subsection("Time stepping");
+    end_time  = prm.get_double("End time");
+    time_step = prm.get_double("Time step");
+    max_steps = prm.get_integer("Maximum steps");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Cahn-Hilliard");
+    cahn_hilliard.scheme        = prm.get("Scheme");
+    cahn_hilliard.stabilization = prm.get_double("Stabilization");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Linear solver");
+    linear_solver.type               = prm.get("Type");
+    linear_solver.relative_tolerance = prm.get_double("Relative tolerance");
+    linear_solver.max_iterations     = prm.get_integer("Maximum iterations");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    output_directory = prm.get("Directory");
+    output_interval  = prm.get_double("Interval");
+    write_vtu        = prm.get_bool("Write VTU");
+    prm.leave_subsection();
+  }
+
+  void read_parameter_file(const std::string &filename, ParameterHandler &prm, Parameters &parameters)
+  {
+    std::ifstream in(filename);
+    AssertThrow(in, ExcMessage("Cannot open the parameter file <" + filename + ">"));
+    Parameters::declare(prm);
+    prm.parse_input(filename, "", /*skip_undefined=*/false, /*assert_mandatory_entries_are_found=*/false);
+    parameters.parse(prm);
+  }
+} // namespace Membrane

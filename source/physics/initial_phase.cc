@@ -1,0 +1,103 @@
+#include <membrane/physics/initial_phase.h>
+#include <membrane/surface/geometry.h>
+#include <membrane/surface/initial_shapes.h>
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/numbers.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  namespace
+  {
+    std::uint64_t splitmix64(std::uint64_t x)
+    {
+      x += 0x9e3779b97f4a7c15ULL;
+      x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+      x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+      return x ^ (x >> 31);
+    }
+
+    /// Set each owned vertex value from a function of the reference vertex.
+    template <typename Value>
+    Vector vertex_field(const Surface &surface, const Value &value)
+    {
+      const FieldSpace &scalars = surface.scalar_space();
+      Vector            field   = scalars.make_owned();
+      for (const auto &cell : scalars.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const auto dof = cell->vertex_dof_index(v, 0);
+              if (scalars.owned().is_element(dof))
+                field[dof] = value(cell->vertex(v));
+            }
+      field.compress(VectorOperation::insert);
+      scalars.constraints().distribute(field);
+      return field;
+    }
+
+    double integral(const Surface &surface, const Vector &owned)
+    {
+      return integrate(surface, surface.scalar_space().ghosted_copy(owned));
+    }
+  } // namespace
+
+  double hashed_uniform(const std::uint64_t seed, const Point<spacedim> &p)
+  {
+    // Quantise the reference position (exact on any mesh of the unit square up
+    // to 2^20 cells per side) and hash it with the seed.
+    std::uint64_t key = splitmix64(seed);
+    for (unsigned int d = 0; d < spacedim; ++d)
+      key = splitmix64(key ^ static_cast<std::uint64_t>(std::llround((p[d] + 8.0) * 1048576.0)));
+    return (key >> 11) * 0x1.0p-53;
+  }
+
+  Vector make_initial_phase(const Surface &surface, const InitialPhaseOptions &options)
+  {
+    if (options.type == "bump")
+      {
+        const auto shape = vertex_field(surface, [&](const Point<spacedim> &p) { return bump_profile(p, options.bump_radius); });
+        const auto minus_one = vertex_field(surface, [](const Point<spacedim> &) { return -1.0; });
+        double height = options.bump_height;
+        if (options.prescribe_mass)
+          height = (options.mass - integral(surface, minus_one)) / integral(surface, shape);
+        Vector phi = minus_one;
+        phi.add(height, shape);
+        return phi;
+      }
+
+    Vector phi;
+    if (options.type == "random")
+      phi = vertex_field(surface, [&](const Point<spacedim> &p) {
+        return options.random_min + (options.random_max - options.random_min) * hashed_uniform(options.seed, p);
+      });
+    else if (options.type == "uniform")
+      phi = vertex_field(surface, [&](const Point<spacedim> &) { return options.uniform_value; });
+    else
+      {
+        FunctionParser<2> parser(1);
+        try
+          {
+            parser.initialize("x,y", options.expression, {{"pi", numbers::PI}});
+          }
+        catch (...)
+          {
+            AssertThrow(false, ExcMessage("Entry <Initial phase/Expression>: cannot parse <" + options.expression +
+                                          "> as a function of x, y"));
+          }
+        phi = vertex_field(surface, [&](const Point<spacedim> &p) { return parser.value(Point<2>(p[0], p[1])); });
+      }
+    if (options.prescribe_mass)
+      {
+        const Vector one   = vertex_field(surface, [](const Point<spacedim> &) { return 1.0; });
+        const double shift = (options.mass - integral(surface, phi)) / integral(surface, one);
+        phi.add(shift, one);
+      }
+    return phi;
+  }
+} // namespace Membrane
