@@ -4,6 +4,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cctype>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -17,6 +18,20 @@ namespace Membrane
     const char *usage = "Usage: membrane-flow [--quiet] <input.prm>\n"
                         "       membrane-flow --print-parameters [text|markdown]\n";
 
+    /// Collapse runs of whitespace (deal.II wraps its messages) into one space.
+    std::string single_line(const std::string &text)
+    {
+      std::string out;
+      for (const char c : text)
+        if (!std::isspace(static_cast<unsigned char>(c)))
+          out += c;
+        else if (!out.empty() && out.back() != ' ')
+          out += ' ';
+      while (!out.empty() && (out.back() == ' ' || out.back() == '-'))
+        out.pop_back();
+      return out;
+    }
+
     /// The user-facing part of a deal.II exception text.
     std::string clean_message(const std::exception &e)
     {
@@ -27,11 +42,9 @@ namespace Membrane
             std::string info = text.substr(pos + marker.size());
             if (const auto end = info.find("\n\nStacktrace"); end != std::string::npos)
               info = info.substr(0, end);
-            while (!info.empty() && (info.back() == '\n' || info.back() == '-'))
-              info.pop_back();
-            return info;
+            return single_line(info);
           }
-      return text;
+      return single_line(text);
     }
   } // namespace
 
