@@ -16,7 +16,7 @@ namespace Membrane
   namespace
   {
     const char *usage = "Usage: membrane-flow [--quiet] <input.prm>\n"
-                        "       membrane-flow --print-parameters [text|markdown]\n";
+                        "       membrane-flow --print-parameters [prm|json]\n";
 
     /// Collapse runs of whitespace (deal.II wraps its messages) into one space.
     std::string single_line(const std::string &text)
@@ -61,8 +61,8 @@ namespace Membrane
         ParameterHandler prm;
         Parameters::declare(prm);
         if (root)
-          prm.print_parameters(std::cout, args.size() > 1 && args[1] == "markdown" ? ParameterHandler::LaTeX
-                                                                                    : ParameterHandler::PRM);
+          prm.print_parameters(std::cout, args.size() > 1 && args[1] == "json" ? ParameterHandler::JSON
+                                                                                : ParameterHandler::PRM);
         return 0;
       }
     std::string input;
