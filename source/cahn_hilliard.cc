@@ -39,6 +39,9 @@ namespace Membrane
 
     const double sigma = material.line_tension, xi2 = std::pow(material.transition_length, 2);
     const double mobility = material.phase_mobility;
+    // The implicit coefficient S of the scheme (see the header), per quadrature point.
+    const bool   linearized = options.scheme == "linearized";
+    const double constant_S = options.scheme == "stabilized" ? options.stabilization : 0.0;
 
     for (const auto &cell : space.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
@@ -52,8 +55,7 @@ namespace Membrane
           local_rhs    = 0;
           for (unsigned int q = 0; q < n_q; ++q)
             {
-              const double S = options.scheme == "stabilized" ? options.stabilization :
-                               options.scheme == "linearized" ? DoubleWell::second_derivative(old[q]) : 0.0;
+              const double S = linearized ? DoubleWell::second_derivative(old[q]) : constant_S;
               // Explicit part of Y: sigma (f'(phi^m) - S phi^m) + curvature coupling.
               const double explicit_potential = sigma * (DoubleWell::derivative(old[q]) - S * old[q]) +
                                                 material.curvature_potential(old[q], H[q], K[q]);
