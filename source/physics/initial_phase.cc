@@ -62,11 +62,11 @@ namespace Membrane
     if (options.type == "bump")
       {
         const auto shape = vertex_field(surface, [&](const Point<spacedim> &p) { return bump_profile(p, options.bump_radius); });
-        const auto minus_one = vertex_field(surface, [](const Point<spacedim> &) { return -1.0; });
         double height = options.bump_height;
+        // integral (-1 + a3 shape) ds = M, and integral -1 ds = -area.
         if (options.prescribe_mass)
-          height = (options.mass - integral(surface, minus_one)) / integral(surface, shape);
-        Vector phi = minus_one;
+          height = (options.mass + surface.area()) / integral(surface, shape);
+        Vector phi = vertex_field(surface, [](const Point<spacedim> &) { return -1.0; });
         phi.add(height, shape);
         return phi;
       }
@@ -94,9 +94,9 @@ namespace Membrane
       }
     if (options.prescribe_mass)
       {
-        const Vector one   = vertex_field(surface, [](const Point<spacedim> &) { return 1.0; });
-        const double shift = (options.mass - integral(surface, phi)) / integral(surface, one);
-        phi.add(shift, one);
+        // Adding a constant c changes integral phi ds by c * area.
+        const double shift = (options.mass - integral(surface, phi)) / surface.area();
+        phi.add(shift);
       }
     return phi;
   }
