@@ -94,8 +94,7 @@ namespace Membrane
         options.parameter_text = text.str();
 
         Simulator         simulator(parameters, options);
-        const std::string stop = simulator.run();
-        return stop == "end time" || stop == "maximum steps" ? 0 : 2;
+        return simulator.run().failed ? 2 : 0;
       }
     catch (const std::exception &e)
       {

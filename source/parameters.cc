@@ -83,7 +83,52 @@ namespace Membrane
       prm.enter_subsection("Time stepping");
       prm.declare_entry("End time", "0.01", Patterns::Double(0, max_double), "T: the run stops at t = T.");
       prm.declare_entry("Time step", "1e-4", Patterns::Double(1e-14, max_double), "tau: the time step.");
-      prm.declare_entry("Maximum steps", "1000000", Patterns::Integer(1), "Stop after this many steps.");
+      prm.declare_entry("Maximum steps", "1000000", Patterns::Integer(1), "Stop after this many accepted steps.");
+      prm.declare_entry("Adaptive", "true", Patterns::Bool(),
+                        "Adapt tau: a step is rejected and retried with tau/2 when the energy would rise (beyond "
+                        "Energy tolerance), a cell would fold or invert (Minimum cell quality) or a solve fails; "
+                        "after an easy step (vertices moved < 0.2 cells, energy changed < 1 %) tau grows by Growth "
+                        "factor. Time step is the first tau. false: fixed tau, and any such failure stops the run.");
+      prm.declare_entry("Minimum time step", "1e-9", Patterns::Double(1e-300, max_double),
+                        "The run stops (keeping its last good state) when tau would fall below this.");
+      prm.declare_entry("Maximum time step", "1e-2", Patterns::Double(1e-300, max_double), "Upper bound of tau.");
+      prm.declare_entry("Growth factor", "1.25", Patterns::Double(1, 10), "tau <- factor tau after an easy step.");
+      prm.declare_entry("Energy tolerance", "1e-10", Patterns::Double(0, 1),
+                        "Largest accepted relative rise of the free energy in one step (round-off allowance).");
+      prm.declare_entry("Equilibrium rate", "0", Patterns::Double(0, max_double),
+                        "Stop at equilibrium when |F^{m+1} - F^m| / (tau |F^m|) falls below this (1/time; 0: never).");
+      prm.declare_entry("Minimum cell quality", "0.1", Patterns::Double(-1, 1),
+                        "Smallest accepted sine of a cell's corner angle (1: rectangle; 0: degenerate).");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Shape");
+      prm.declare_entry("Evolve shape", "true", Patterns::Bool(),
+                        "false: the surface is held fixed and only phi evolves (Cahn-Hilliard on a curved surface).");
+      prm.declare_entry("Pressure stabilization", "0.5", Patterns::Double(0, 1),
+                        "delta: weight of the residual of the tangential law in the area equation, which removes "
+                        "checkerboard modes of the Q1 surface pressure gamma (0: none).");
+      prm.declare_entry("Correct area", "true", Patterns::Bool(),
+                        "Restore the initial total area in each step's area equation (removes slow drift).");
+      prm.declare_entry("Grid control weight", "0.1", Patterns::Double(0, 0.5),
+                        "w: after each step every vertex moves by w times the tangential part of (mean of its edge "
+                        "neighbours - itself), and phi is remapped (the paper's alpha = delta = 0.1; 0: no grid "
+                        "control, a purely Lagrangian mesh).");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Outcome");
+      prm.declare_entry("Flat height", "0.15", Patterns::Double(0, max_double),
+                        "A shape whose bud height (apex above the far field) is below this is classified flat.");
+      prm.declare_entry("Complete neck ratio", "0.4", Patterns::Double(0, 1),
+                        "A neck narrower than this fraction of the bud radius above it makes a complete bud.");
+      prm.declare_entry("Pinch-off radius", "0.03", Patterns::Double(0, max_double),
+                        "The run stops (approach to pinch-off) when a complete bud's neck radius falls below this.");
+      prm.leave_subsection();
+
+      prm.enter_subsection("Checkpoint");
+      prm.declare_entry("Interval", "0", Patterns::Integer(0),
+                        "Write checkpoint.txt (atomically) every this many accepted steps and at the end (0: never).");
+      prm.declare_entry("Resume from", "", Patterns::Anything(),
+                        "A checkpoint file to continue from (same mesh; the statistics continue too). Empty: start at t = 0.");
       prm.leave_subsection();
 
       prm.enter_subsection("Cahn-Hilliard");
@@ -177,6 +222,35 @@ namespace Membrane
     end_time  = prm.get_double("End time");
     time_step = prm.get_double("Time step");
     max_steps = prm.get_integer("Maximum steps");
+    adaptive         = prm.get_bool("Adaptive");
+    min_time_step    = prm.get_double("Minimum time step");
+    max_time_step    = prm.get_double("Maximum time step");
+    growth_factor    = prm.get_double("Growth factor");
+    energy_tolerance = prm.get_double("Energy tolerance");
+    equilibrium_rate = prm.get_double("Equilibrium rate");
+    min_cell_quality = prm.get_double("Minimum cell quality");
+    AssertThrow(min_time_step <= time_step && time_step <= max_time_step,
+                ExcMessage("Entries <Time stepping/Time step>: need Minimum time step <= Time step <= Maximum time "
+                           "step (got " + prm.get("Minimum time step") + ", " + prm.get("Time step") + ", " +
+                           prm.get("Maximum time step") + ")"));
+    prm.leave_subsection();
+
+    prm.enter_subsection("Shape");
+    evolve_shape                         = prm.get_bool("Evolve shape");
+    shape_options.pressure_stabilization = prm.get_double("Pressure stabilization");
+    shape_options.correct_area           = prm.get_bool("Correct area");
+    grid_control_weight                  = prm.get_double("Grid control weight");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Outcome");
+    outcome.flat_height         = prm.get_double("Flat height");
+    outcome.complete_neck_ratio = prm.get_double("Complete neck ratio");
+    pinch_off_radius            = prm.get_double("Pinch-off radius");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Checkpoint");
+    checkpoint_interval = prm.get_integer("Interval");
+    resume_from         = prm.get("Resume from");
     prm.leave_subsection();
 
     prm.enter_subsection("Cahn-Hilliard");

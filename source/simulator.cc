@@ -1,19 +1,31 @@
 #include <membrane/io/atomic_file.h>
+#include <membrane/io/checkpoint.h>
 #include <membrane/io/field_output.h>
-#include <membrane/physics/energy.h>
 #include <membrane/simulator.h>
+#include <membrane/surface/grid_control.h>
 #include <membrane/surface/initial_shapes.h>
 
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <iomanip>
 #include <sstream>
 
 namespace Membrane
 {
   using namespace dealii;
+
+  namespace
+  {
+    std::string format(const double value)
+    {
+      std::ostringstream out;
+      out << std::setprecision(4) << value;
+      return out.str();
+    }
+  } // namespace
 
   Simulator::Simulator(const Parameters &parameters, RunOptions options, MPI_Comm communicator)
     : parameters(parameters)
@@ -24,6 +36,7 @@ namespace Membrane
     , triangulation(communicator)
     , surface(triangulation, true)
     , cahn_hilliard(triangulation, true)
+    , shape_solver(triangulation, true)
   {}
 
   Simulator::~Simulator() = default;
@@ -34,6 +47,8 @@ namespace Membrane
     make_periodic_unit_square(triangulation, parameters.cells_per_side);
     surface.setup();
     cahn_hilliard.setup();
+    if (parameters.evolve_shape)
+      shape_solver.setup();
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       std::filesystem::create_directories(parameters.output_directory);
     MPI_Barrier(communicator);
@@ -55,9 +70,39 @@ namespace Membrane
 
     phi                = surface.scalar_space().ghosted_copy(make_initial_phase(surface, parameters.initial_phase));
     chemical_potential = surface.scalar_space().make_ghosted();
+    pressure           = surface.scalar_space().make_ghosted();
     geometry           = compute_geometry(surface);
+    energy             = compute_energy(surface, geometry, phi, parameters.material);
     initial_mass       = integrate(surface, phi);
     initial_area       = surface.area();
+    tau                = parameters.time_step;
+    cell_quality       = min_corner_sine(surface, geometry.normal);
+  }
+
+  void Simulator::resume()
+  {
+    TimerOutput::Scope scope(timer, "initial state");
+    Vector      displacement = surface.vector_space().make_owned();
+    Vector      phi_owned    = surface.scalar_space().make_owned();
+    std::string statistics_text;
+    const auto  scalars = load_checkpoint(parameters.resume_from, surface, displacement, phi_owned, statistics_text);
+    surface.set_displacement(displacement);
+    phi                = surface.scalar_space().ghosted_copy(phi_owned);
+    chemical_potential = surface.scalar_space().make_ghosted();
+    pressure           = surface.scalar_space().make_ghosted();
+    geometry           = compute_geometry(surface);
+    energy             = compute_energy(surface, geometry, phi, parameters.material);
+    time               = scalars.at("time");
+    tau                = scalars.at("tau");
+    step               = static_cast<unsigned int>(scalars.at("step"));
+    rejected_steps     = static_cast<unsigned int>(scalars.at("rejected_steps"));
+    initial_area       = scalars.at("initial_area");
+    initial_mass       = scalars.at("initial_mass");
+    next_output_time   = scalars.at("next_output_time");
+    stats              = Statistics::from_text(statistics_text);
+    cell_quality       = min_corner_sine(surface, geometry.normal);
+    output->resume(time);
+    pcout << "Resumed from " << parameters.resume_from << " at step " << step << ", t = " << time << '\n';
   }
 
   void Simulator::warn_if_unresolved() const
@@ -72,37 +117,96 @@ namespace Membrane
             << "Increase <Mesh/Cells per side> to at least " << std::ceil(1.0 / (1.25 * xi)) << ".\n";
   }
 
-  bool Simulator::advance(const double tau)
+  Simulator::Rejection Simulator::try_step(const double tau_trial)
   {
-    Vector       phi_new = surface.scalar_space().make_owned();
-    Vector       potential = surface.scalar_space().make_owned();
-    unsigned int iterations = 0;
-    Timer        solve_clock;
-    {
-      TimerOutput::Scope scope(timer, "Cahn-Hilliard step");
-      iterations = cahn_hilliard.step(surface, geometry, parameters.material, parameters.cahn_hilliard,
-                                      parameters.linear_solver, tau, phi, phi_new, potential);
-    }
-    const double solve_seconds = solve_clock.wall_time();
-    if (!std::isfinite(phi_new.l2_norm()) || phi_new.linfty_norm() > 10)
-      return false;
-    phi                = phi_new;
-    chemical_potential = potential;
-    time += tau;
-    ++step;
-    record_statistics(tau, iterations, solve_seconds);
-    return true;
+    const Material &material     = parameters.material;
+    Vector          displacement = surface.vector_space().make_owned();
+    displacement                 = surface.displacement();
+    const Vector      phi_old    = phi;
+    const Geometry    geometry_old = geometry;
+    const EnergyTerms energy_old   = energy;
+    const auto        restore      = [&](const Rejection &why) {
+      surface.set_displacement(displacement);
+      phi      = phi_old;
+      geometry = geometry_old;
+      energy   = energy_old;
+      return why;
+    };
+
+    Vector phi_new   = surface.scalar_space().make_owned();
+    Vector potential = surface.scalar_space().make_owned();
+    try
+      {
+        {
+          TimerOutput::Scope scope(timer, "Cahn-Hilliard step");
+          solver_iterations = cahn_hilliard.step(surface, geometry, material, parameters.cahn_hilliard,
+                                                 parameters.linear_solver, tau_trial, phi, phi_new, potential);
+        }
+        if (!std::isfinite(phi_new.l2_norm()) || phi_new.linfty_norm() > 10)
+          return restore("phi became non-finite or |phi| > 10");
+        chemical_potential = potential;
+
+        max_increment    = 0;
+        remap_correction = 0;
+        if (parameters.evolve_shape)
+          {
+            ShapeUpdate update;
+            {
+              TimerOutput::Scope scope(timer, "shape step");
+              update = shape_solver.step(surface, geometry, material, parameters.shape_options,
+                                         parameters.linear_solver, tau_trial, initial_area, phi, chemical_potential);
+            }
+            max_increment = update.increment.linfty_norm();
+            if (!std::isfinite(update.increment.l2_norm()) || !std::isfinite(update.pressure.l2_norm()))
+              return restore("the shape solve gave non-finite values");
+            Vector moved = displacement;
+            moved += update.increment;
+            surface.set_displacement(moved);
+            pressure = update.pressure;
+            phi      = phi_new; // phi~ rides on the vertices (Lagrangian)
+            if (parameters.grid_control_weight > 0)
+              {
+                TimerOutput::Scope scope(timer, "grid control");
+                const Vector normal = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
+                const Vector shift  = grid_control_displacement(surface, normal, parameters.grid_control_weight);
+                remap_correction    = move_tangentially_and_remap(surface, shift, phi);
+              }
+          }
+        else
+          phi = phi_new;
+
+        {
+          TimerOutput::Scope scope(timer, "geometry");
+          geometry = compute_geometry(surface);
+        }
+        cell_quality = min_corner_sine(surface, geometry.normal);
+        energy       = compute_energy(surface, geometry, phi, material);
+      }
+    catch (const std::exception &e)
+      {
+        return restore("a linear solve failed");
+      }
+
+    if (!std::isfinite(energy.total()))
+      return restore("the energy became non-finite");
+    if (parameters.evolve_shape && cell_quality < parameters.min_cell_quality)
+      return restore("a cell degenerated (corner sine " + format(cell_quality) + " < " +
+                     format(parameters.min_cell_quality) + ")");
+    const double rise = energy.total() - energy_old.total();
+    if (rise > parameters.energy_tolerance * std::max(std::abs(energy_old.total()), 1e-300))
+      return restore("the energy would rise by " + format(rise));
+    return {};
   }
 
-  void Simulator::record_statistics(const double tau, const unsigned int iterations, const double solve_seconds)
+  void Simulator::record_statistics(const double tau_used)
   {
     TimerOutput::Scope scope(timer, "statistics");
-    const EnergyTerms energy = compute_energy(surface, geometry, phi, parameters.material);
-    const double      area   = surface.area();
-    const double      mass   = integrate(surface, phi);
+    const double area = surface.area();
+    const double mass = integrate(surface, phi);
+    bud               = measure_bud(surface, phi);
     stats.set("step", step);
     stats.set("time", time);
-    stats.set("tau", tau);
+    stats.set("tau", tau_used);
     stats.set("energy", energy.total());
     stats.set("bending_energy", energy.bending);
     stats.set("gaussian_energy", energy.gaussian);
@@ -115,8 +219,20 @@ namespace Membrane
     const auto [phi_min, phi_max] = global_range(phi);
     stats.set("phi_min", phi_min);
     stats.set("phi_max", phi_max);
-    stats.set("solver_iterations", iterations);
-    stats.set("solve_seconds", solve_seconds);
+    const auto [gamma_min, gamma_max] = global_range(pressure);
+    stats.set("gamma_min", gamma_min);
+    stats.set("gamma_max", gamma_max);
+    stats.set("bud_height", bud.height);
+    stats.set("neck_radius", bud.neck_radius);
+    stats.set("bud_radius", bud.bud_radius);
+    stats.set("neck_ratio", bud.neck_ratio);
+    stats.set("domain_area", bud.domain_area);
+    stats.set("budded_fraction", bud.domain_area > 0 ? std::min(1.0, bud.height / (2 * std::sqrt(bud.domain_area / M_PI))) : 0);
+    stats.set("max_increment", max_increment);
+    stats.set("remap_mass_correction", remap_correction);
+    stats.set("min_corner_sine", cell_quality);
+    stats.set("rejected_steps", rejected_steps);
+    stats.set("solver_iterations", solver_iterations);
     stats.set("wall_seconds", wall.wall_time());
     stats.end_row();
   }
@@ -127,11 +243,25 @@ namespace Membrane
     if (options.quiet || (!force && now - last_progress < 1.0))
       return;
     last_progress = now;
-    const double eta = time > 0 ? now * (parameters.end_time - time) / time : 0;
     pcout << "step " << std::setw(6) << step << "  t = " << std::scientific << std::setprecision(4) << time
           << "  tau = " << std::setprecision(2) << stats.last("tau") << "  F = " << std::setprecision(6)
-          << stats.last("energy") << std::defaultfloat << std::setprecision(3) << "  elapsed " << now
-          << " s  left ~" << eta << " s" << std::endl;
+          << stats.last("energy") << std::defaultfloat << std::setprecision(3) << "  bud height "
+          << bud.height << "  neck " << bud.neck_radius << "  rejected " << rejected_steps << "  elapsed " << now
+          << " s" << std::endl;
+  }
+
+  void Simulator::write_checkpoint() const
+  {
+    TimerOutput::Scope scope(timer, "checkpoint");
+    save_checkpoint(parameters.output_directory + "/checkpoint.txt", surface, phi,
+                    {{"time", time},
+                     {"tau", tau},
+                     {"step", step},
+                     {"rejected_steps", rejected_steps},
+                     {"initial_area", initial_area},
+                     {"initial_mass", initial_mass},
+                     {"next_output_time", next_output_time}},
+                    stats.to_text());
   }
 
   void Simulator::write_run_info() const
@@ -150,26 +280,32 @@ namespace Membrane
     write_file_atomically(dir + "run_info.json", info.str());
   }
 
-  void Simulator::write_summary(const std::string &stop_reason, const double wall_seconds) const
+  void Simulator::write_summary(const RunResult &result, const double wall_seconds) const
   {
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
     std::ostringstream out;
     out << std::setprecision(16) << "{\n  \"code_version\": \"" << code_version() << "\",\n"
-        << "  \"stop_reason\": \"" << stop_reason << "\",\n  \"steps\": " << step << ",\n  \"time\": " << time
+        << "  \"stop_reason\": \"" << result.stop_reason << "\",\n  \"failed\": " << (result.failed ? "true" : "false")
+        << ",\n  \"outcome\": \"" << result.outcome << "\",\n  \"steps\": " << step
+        << ",\n  \"rejected_steps\": " << rejected_steps << ",\n  \"time\": " << time
         << ",\n  \"wall_seconds\": " << wall_seconds;
     for (const char *c : {"energy", "bending_energy", "gaussian_energy", "gradient_energy", "well_energy", "area",
-                          "area_drift", "mass", "mass_drift"})
+                          "area_drift", "mass", "mass_drift", "bud_height", "neck_radius", "bud_radius", "neck_ratio",
+                          "domain_area", "budded_fraction", "min_corner_sine"})
       out << ",\n  \"" << c << "\": " << stats.last(c);
     out << "\n}\n";
     write_file_atomically(parameters.output_directory + "/summary.json", out.str());
   }
 
-  std::string Simulator::run()
+  RunResult Simulator::run()
   {
     wall.restart();
     setup();
-    set_initial_state();
+    if (parameters.resume_from.empty())
+      set_initial_state();
+    else
+      resume();
     warn_if_unresolved();
     write_run_info();
     pcout << "Membrane patch: " << triangulation.n_global_active_cells() << " cells, "
@@ -177,51 +313,107 @@ namespace Membrane
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s); output in "
           << parameters.output_directory << "/\n";
 
-    record_statistics(0, 0, 0);
-    const auto write_fields = [&]() {
-      if (!parameters.write_vtu)
+    unsigned int last_written = std::numeric_limits<unsigned int>::max();
+    const auto   write_fields = [&]() {
+      if (!parameters.write_vtu || last_written == step)
         return;
+      last_written = step;
       TimerOutput::Scope scope(timer, "output");
-      output->write(surface, geometry, {{"phi", &phi}, {"Y", &chemical_potential}}, time, step);
+      output->write(surface, geometry, {{"phi", &phi}, {"Y", &chemical_potential}, {"gamma", &pressure}}, time, step);
     };
-    write_fields();
-    next_output_time = parameters.output_interval;
+    const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
+    if (parameters.resume_from.empty())
+      {
+        record_statistics(0);
+        write_fields();
+        next_output_time = parameters.output_interval;
+      }
+    else
+      bud = measure_bud(surface, phi);
 
-    std::string stop_reason = "end time";
-    while (time < parameters.end_time * (1 - 1e-12))
+    RunResult  result{"end time", false, ""};
+    const auto finished = [&]() { return time >= parameters.end_time * (1 - 1e-12); };
+    while (!finished())
       {
         if (step >= parameters.max_steps)
           {
-            stop_reason = "maximum steps";
+            result.stop_reason = "maximum steps";
             break;
           }
-        const double tau = std::min(parameters.time_step, parameters.end_time - time);
-        if (!advance(tau))
+        const double trial = std::min(tau, parameters.end_time - time);
+        const double energy_before = energy.total();
+        const Rejection why = try_step(trial);
+        if (!why.empty())
           {
-            stop_reason = "diverged at t = " + std::to_string(time) + ": phi became non-finite or |phi| > 10; "
-                          "the last good state is kept (reduce <Time stepping/Time step>)";
-            break;
+            ++rejected_steps;
+            tau = 0.5 * trial;
+            if (!parameters.adaptive || tau < parameters.min_time_step)
+              {
+                result.stop_reason = "step failed at t = " + format(time) + ": " + why +
+                                     (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>"
+                                                          : "; reduce <Time stepping/Time step> or set Adaptive = true") +
+                                     ". The last good state is kept";
+                result.failed = true;
+                break;
+              }
+            continue;
           }
-        const bool last = time >= parameters.end_time * (1 - 1e-12);
-        if (time >= next_output_time * (1 - 1e-12) || last)
+        time += trial;
+        ++step;
+        record_statistics(trial);
+        // An easy step (vertices moved under a fifth of a cell, energy changed
+        // under 1 %) lets tau grow; a hard one (over half a cell) shrinks it.
+        const double h      = 1.0 / parameters.cells_per_side;
+        const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
+        if (parameters.adaptive && trial == tau)
+          {
+            if (max_increment < 0.2 * h && change < 1e-2)
+              tau = std::min(parameters.growth_factor * tau, parameters.max_time_step);
+            else if (max_increment > 0.5 * h)
+              tau = std::max(0.7 * tau, parameters.min_time_step);
+          }
+
+        const bool output_due = time >= next_output_time * (1 - 1e-12);
+        if (output_due || finished())
           {
             write_fields();
             while (next_output_time <= time * (1 + 1e-12))
               next_output_time += std::max(parameters.output_interval, 1e-300);
-            if (Utilities::MPI::this_mpi_process(communicator) == 0)
+            if (root)
               stats.write(parameters.output_directory + "/statistics.txt");
           }
-        report_progress(last);
+        if (parameters.checkpoint_interval > 0 && step % parameters.checkpoint_interval == 0)
+          write_checkpoint();
+        report_progress(finished());
+
+        if (parameters.evolve_shape && bud.neck_ratio < parameters.outcome.complete_neck_ratio &&
+            bud.neck_radius < parameters.pinch_off_radius)
+          {
+            result.stop_reason = "pinch-off approach: neck radius " + format(bud.neck_radius) + " < " +
+                                 format(parameters.pinch_off_radius);
+            break;
+          }
+        if (parameters.equilibrium_rate > 0 &&
+            change / trial < parameters.equilibrium_rate)
+          {
+            result.stop_reason = "equilibrium: relative energy rate " + format(change / trial) + " < " +
+                                 format(parameters.equilibrium_rate);
+            break;
+          }
       }
-    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+    write_fields();
+    if (parameters.checkpoint_interval > 0)
+      write_checkpoint();
+    if (root)
       stats.write(parameters.output_directory + "/statistics.txt");
-    write_summary(stop_reason, wall.wall_time());
-    pcout << "Stopped (" << stop_reason << ") after " << step << " steps at t = " << time << "; "
-          << "energy " << stats.last("energy") << ", mass drift " << stats.last("mass_drift") << ", area drift "
-          << stats.last("area_drift") << "\nResults: " << parameters.output_directory << "/surface.pvd, "
-          << "statistics.txt, summary.json, parameters.prm\n";
+    result.outcome = classify_outcome(bud, parameters.outcome, result.stop_reason.rfind("pinch-off", 0) == 0);
+    write_summary(result, wall.wall_time());
+    pcout << "Stopped (" << result.stop_reason << ") after " << step << " steps (" << rejected_steps
+          << " rejected) at t = " << time << "; outcome: " << result.outcome << "; energy " << stats.last("energy")
+          << ", mass drift " << stats.last("mass_drift") << ", area drift " << stats.last("area_drift")
+          << "\nResults: " << parameters.output_directory << "/surface.pvd, statistics.txt, summary.json, parameters.prm\n";
     if (!options.quiet)
       timer.print_wall_time_statistics(communicator);
-    return stop_reason;
+    return result;
   }
 } // namespace Membrane

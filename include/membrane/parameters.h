@@ -2,9 +2,11 @@
 // Every input of a run, declared with a default, a pattern and documentation
 // (meaning, scale, the paper's symbol) in a deal.II ParameterHandler.
 
+#include <membrane/analysis/bud_shape.h>
 #include <membrane/cahn_hilliard.h>
 #include <membrane/physics/initial_phase.h>
 #include <membrane/physics/material.h>
+#include <membrane/shape_solver.h>
 #include <membrane/solvers/linear_solver.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -27,6 +29,19 @@ namespace Membrane
     // Time stepping
     double       end_time = 0.01, time_step = 1e-4;
     unsigned int max_steps = 1000000;
+    bool         adaptive = true;
+    double       min_time_step = 1e-9, max_time_step = 1e-2, growth_factor = 1.25;
+    double       energy_tolerance = 1e-10, equilibrium_rate = 0, min_cell_quality = 0.1;
+    // Shape
+    bool         evolve_shape = true;
+    ShapeOptions shape_options;
+    double       grid_control_weight = 0.1;
+    // Outcome
+    OutcomeCriteria outcome;
+    double          pinch_off_radius = 0.03;
+    // Checkpoints
+    unsigned int checkpoint_interval = 0;
+    std::string  resume_from;
     // Solvers
     CahnHilliardOptions cahn_hilliard;
     LinearSolverOptions linear_solver;

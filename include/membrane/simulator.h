@@ -1,16 +1,22 @@
 #pragma once
 // A run: builds the periodic patch and its initial state from the parameters,
 // advances the time loop, and writes fields, statistics, the parameters used,
-// the code version and a summary into the output directory.
+// the code version, checkpoints and a summary into the output directory.
 //
-// One time step on a fixed surface (MODEL.md section 4):
-//   1. geometry of Gamma^m: vertex normals, H^m (weak lap_s X = H n), K^m (projection);
-//   2. Cahn-Hilliard: (phi^m) -> (phi^{m+1}, Y) by one linear solve;
-//   3. energy terms, area and integral phi ds into the statistics.
+// One time step m -> m+1 (MODEL.md section 4):
+//   1. Cahn-Hilliard on Gamma^m: phi^m -> (phi~, Y);
+//   2. shape: (X^m, phi^m, Y) -> X~ = X^m + W (ShapeSolver); phi~ rides on the vertices;
+//   3. grid control: tangential vertex smoothing with ALE remap of phi~ -> phi^{m+1};
+//   4. geometry of Gamma^{m+1} (normals, H, K), cell quality, energy F^{m+1}.
+// With adaptive stepping a step is rejected (state restored, tau halved) when F
+// would rise, a cell would fold or invert, or a solve fails; easy steps let tau grow.
 
+#include <membrane/analysis/bud_shape.h>
 #include <membrane/cahn_hilliard.h>
 #include <membrane/io/statistics.h>
 #include <membrane/parameters.h>
+#include <membrane/physics/energy.h>
+#include <membrane/shape_solver.h>
 #include <membrane/surface/geometry.h>
 
 #include <deal.II/base/conditional_ostream.h>
@@ -28,44 +34,61 @@ namespace Membrane
     std::string command_line;
   };
 
+  struct RunResult
+  {
+    std::string stop_reason; ///< "end time", "maximum steps", "equilibrium", "pinch-off approach: ..." or a failure
+    bool        failed = false; ///< stopped because the scheme could not continue (not a physical stop)
+    std::string outcome;        ///< "flat", "incomplete bud" or "complete bud"
+  };
+
   class Simulator
   {
   public:
     Simulator(const Parameters &parameters, RunOptions options, MPI_Comm communicator = MPI_COMM_WORLD);
     ~Simulator();
 
-    /// Runs to the end time; returns the reason it stopped ("end time",
-    /// "maximum steps", or a divergence message).
-    std::string run();
+    RunResult run();
 
     const Statistics &statistics() const { return stats; }
 
   private:
-    void setup();
-    void set_initial_state();
-    void warn_if_unresolved() const;
-    bool advance(double tau);
-    void record_statistics(double tau, unsigned int iterations, double solve_seconds);
-    void write_run_info() const;
-    void write_summary(const std::string &stop_reason, double wall_seconds) const;
-    void report_progress(bool force);
+    /// Why a trial step was rejected (empty: accepted).
+    using Rejection = std::string;
+
+    void      setup();
+    void      set_initial_state();
+    void      resume();
+    void      warn_if_unresolved() const;
+    Rejection try_step(double tau);
+    void      record_statistics(double tau);
+    void      write_checkpoint() const;
+    void      write_run_info() const;
+    void      write_summary(const RunResult &result, double wall_seconds) const;
+    void      report_progress(bool force);
 
     const Parameters &parameters;
     const RunOptions  options;
     MPI_Comm          communicator;
     dealii::ConditionalOStream pcout;
-    dealii::TimerOutput        timer;
+    mutable dealii::TimerOutput timer;
 
     Triangulation      triangulation;
     Surface            surface;
     CahnHilliardSolver cahn_hilliard;
+    ShapeSolver        shape_solver;
     Geometry           geometry;
-    Vector             phi, chemical_potential; ///< ghosted
-    double             time = 0, initial_mass = 0, initial_area = 0;
-    unsigned int       step = 0;
-    Statistics         stats;
+    EnergyTerms        energy;
+    Vector             phi, chemical_potential, pressure; ///< ghosted
+    BudShape           bud;
+
+    double       time = 0, tau = 0, initial_mass = 0, initial_area = 0, next_output_time = 0;
+    unsigned int step = 0, rejected_steps = 0, solver_iterations = 0;
+    /// Observables of the last accepted step, for the statistics.
+    double max_increment = 0, remap_correction = 0, cell_quality = 1;
+
+    Statistics                         stats;
     std::unique_ptr<class FieldOutput> output;
-    dealii::Timer      wall;
-    double             last_progress = -1e9, next_output_time = 0;
+    dealii::Timer                      wall;
+    double                             last_progress = -1e9;
   };
 } // namespace Membrane

@@ -5,6 +5,7 @@
 #include <deal.II/numerics/data_component_interpretation.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -15,6 +16,23 @@ namespace Membrane
   FieldOutput::FieldOutput(std::string directory)
     : directory(std::move(directory))
   {}
+
+  void FieldOutput::resume(const double time)
+  {
+    // write_pvd_record writes one line per snapshot: <DataSet timestep="t" group="" part="0" file="name"/>
+    std::ifstream in(directory + "/surface.pvd");
+    snapshots.clear();
+    for (std::string line; std::getline(in, line);)
+      {
+        const auto t = line.find("timestep=\""), f = line.find("file=\"");
+        if (t == std::string::npos || f == std::string::npos)
+          continue;
+        const double      when = std::stod(line.substr(t + 10));
+        const std::string name = line.substr(f + 6, line.find('"', f + 6) - f - 6);
+        if (when <= time * (1 + 1e-12))
+          snapshots.emplace_back(when, name);
+      }
+  }
 
   void FieldOutput::write(const Surface &surface, const Geometry &geometry,
                           const std::vector<std::pair<std::string, const Vector *>> &scalar_fields,

@@ -4,6 +4,7 @@
 #include <deal.II/base/exceptions.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -42,7 +43,7 @@ namespace Membrane
     for (const auto &c : columns)
       out << ' ' << c;
     out << '\n';
-    out.precision(16);
+    out.precision(17);
     for (const auto &row : rows)
       {
         for (std::size_t c = 0; c < columns.size(); ++c)
@@ -50,6 +51,32 @@ namespace Membrane
         out << '\n';
       }
     return out.str();
+  }
+
+  Statistics Statistics::from_text(const std::string &text)
+  {
+    Statistics         table;
+    std::istringstream in(text);
+    std::string        line;
+    AssertThrow(std::getline(in, line) && !line.empty() && line[0] == '#',
+                dealii::ExcMessage("Statistics text without a '#' header line"));
+    std::istringstream header(line.substr(1));
+    for (std::string name; header >> name;)
+      {
+        table.index.emplace(name, table.columns.size());
+        table.columns.push_back(name);
+      }
+    while (std::getline(in, line))
+      {
+        std::istringstream  values(line);
+        std::vector<double> row;
+        for (std::string word; values >> word;)
+          row.push_back(std::strtod(word.c_str(), nullptr)); // also reads "nan"
+        if (!row.empty())
+          table.rows.push_back(row);
+      }
+    table.current.assign(table.columns.size(), std::numeric_limits<double>::quiet_NaN());
+    return table;
   }
 
   void Statistics::write(const std::string &path) const

@@ -21,6 +21,9 @@ namespace Membrane
                const std::vector<std::pair<std::string, const Vector *>> &scalar_fields, double time,
                unsigned int step);
 
+    /// Continue an existing series: keep the snapshots of surface.pvd up to `time`.
+    void resume(double time);
+
   private:
     std::string                                directory;
     std::vector<std::pair<double, std::string>> snapshots;

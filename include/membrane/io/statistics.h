@@ -19,6 +19,8 @@ namespace Membrane
     std::size_t n_rows() const { return rows.size(); }
     double      last(const std::string &column) const;
     std::string to_text() const;
+    /// The inverse of to_text() (for resuming a run from a checkpoint).
+    static Statistics from_text(const std::string &text);
     /// Written on rank 0 only, atomically.
     void write(const std::string &path) const;
 

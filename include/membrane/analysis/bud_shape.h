@@ -1,0 +1,44 @@
+#pragma once
+// Observables of a bud on the periodic patch, from the current cell vertices.
+//
+//  - direction s = +1 (bud along +z) or -1: the side on which the surface reaches
+//    farther from its median height;
+//  - apex: the point farthest along s; the bud axis is the vertical line through it;
+//  - far-field level: mean height of the points horizontally farther than 1/2
+//    from the axis (the corners of the patch around a centred bud);
+//  - height: s (z_apex - z_far);
+//  - cross-section radius R(h): the largest horizontal distance from the axis of
+//    the points where cell edges cross the level z_far + s h, on `levels` levels;
+//  - neck: the level j minimising R_j / max_{i > j} R_i (a constriction with a wider
+//    bud above it); neck_ratio = that ratio, capped at 1 (1: no neck, a dome);
+//    neck_radius = R_j, bud_radius = max_{i > j} R_i;
+//  - domain_area: the area where phi > 0 (phase A).
+// Horizontal distances are taken modulo the unit period.
+
+#include <membrane/surface/surface.h>
+
+#include <string>
+
+namespace Membrane
+{
+  struct BudShape
+  {
+    int    direction   = 1;
+    double height      = 0;
+    double neck_radius = 0;
+    double bud_radius  = 0;
+    double neck_ratio  = 1;
+    double domain_area = 0;
+  };
+
+  BudShape measure_bud(const Surface &surface, const Vector &phi_ghosted, unsigned int levels = 64);
+
+  struct OutcomeCriteria
+  {
+    double flat_height        = 0.15; ///< below: flat
+    double complete_neck_ratio = 0.4; ///< neck_ratio below: complete bud
+  };
+
+  /// "flat", "incomplete bud" or "complete bud" (a pinch-off stop is always complete).
+  std::string classify_outcome(const BudShape &shape, const OutcomeCriteria &criteria, bool pinch_off);
+} // namespace Membrane

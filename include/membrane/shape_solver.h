@@ -1,0 +1,79 @@
+#pragma once
+// Shape step on the current surface Gamma^m (MODEL.md section 4, step 3).
+//
+// Unknowns (seven Q1 fields): the increment W = X^{m+1} - X^m (3 components),
+// the surface pressure gamma, the new mean curvature H~ and the tangential parts
+// B~_1, B~_2 of the mean-curvature vector. Equations, each multiplied by tau L_X
+// where it carries the velocity (so that all rows are O(1)):
+//
+//   normal:     (W.nu, psi) - tau L_X [ (kappa grad H~, grad psi) + 1/2 (kappa (H - H0)^2 H~, psi)
+//                                     + (H gamma, psi) ]
+//               = tau L_X [ ((H - H0) kappa' grad phi - kappa H0' grad phi
+//                            + kappa_G' c^ij d_j phi a_i, grad psi)
+//                          + (-kappa (H - H0) |grad nu|^2 - sigma xi^2 b^ij d_i phi d_j phi + H G, psi) ]
+//   tangential: (W.a_k, psi) - tau L_X (d_k gamma, psi) = tau L_X (Y d_k phi, psi),   k = 1, 2
+//   area:       (div_s W, psi) + delta [ (W, grad psi) - tau L_X (grad gamma + Y grad phi, grad psi) ]
+//               - epsilon (gamma, psi) = ((A_0 - A^m)/A^m, psi)
+//   curvature:  (H~ nu + B~_1 t_1 + B~_2 t_2, psi_vec) + (grad_s W, grad_s psi_vec) = -(grad_s X^m, grad_s psi_vec)
+//
+// with everything else (H = H^m, K, nu, phi = phi^m, moduli at phi^m, Y of the
+// Cahn-Hilliard step) frozen at t_m. Sign conventions of MODEL.md: H is the sum
+// of principal curvatures, b_ij = X_,ij . n, c^ij = H g^ij - b^ij.
+//
+// Discrete choices (documented in docs/model.md):
+//  - a_k = dX/du_k, the tangents along the parameter directions of the patch;
+//  - b^ij d_i phi d_j phi = -grad phi . grad_s nu . grad phi and
+//    c^ij d_j phi a_i = H_nu grad phi + sym(grad_s nu) grad phi with H_nu = -tr grad_s nu,
+//    all from the gradient of the Q1 vertex-normal field;
+//  - G = sigma (xi^2/2 |grad phi|^2 + f(phi)) is used at the quadrature points;
+//  - pressure stabilization (delta > 0): equal-order Q1 for (W, gamma) admits a
+//    checkerboard gamma (the wide-stencil Schur complement does not see it). The
+//    delta term adds the residual of the tangential law, tested with grad psi
+//    (Masud-Hughes type). It vanishes for the exact solution and gives gamma a
+//    compact-stencil Laplacian;
+//  - epsilon = 1e-12 only fixes the constant gamma on a flat patch, where H = 0
+//    leaves the global pressure undetermined;
+//  - the right-hand side (A_0 - A^m)/A^m of the area row restores slow second-order
+//    drift of the total area (the paper's global pressure correction).
+
+#include <membrane/physics/material.h>
+#include <membrane/solvers/linear_solver.h>
+#include <membrane/surface/geometry.h>
+
+namespace Membrane
+{
+  struct ShapeOptions
+  {
+    double pressure_stabilization = 0.5; ///< delta (0: none)
+    bool   correct_area           = true;
+  };
+
+  /// Result of one shape step; all vectors owned.
+  struct ShapeUpdate
+  {
+    Vector increment;      ///< W = X^{m+1} - X^m (vector space)
+    Vector pressure;       ///< gamma (scalar space)
+    Vector mean_curvature; ///< H~ (scalar space)
+  };
+
+  class ShapeSolver
+  {
+  public:
+    ShapeSolver(const Triangulation &triangulation, bool periodic);
+    void setup();
+
+    ShapeUpdate step(const Surface &surface, const Geometry &geometry, const Material &material,
+                     const ShapeOptions &options, const LinearSolverOptions &solver, double tau,
+                     double reference_area, const Vector &phi_ghosted, const Vector &potential_ghosted);
+
+  private:
+    void assemble(const Surface &surface, const Geometry &geometry, const Material &material,
+                  const ShapeOptions &options, double tau, double reference_area, const Vector &phi,
+                  const Vector &potential);
+
+    const bool   periodic;
+    FieldSpace   space; ///< components: W (0-2), gamma (3), H~ (4), B~_1 (5), B~_2 (6)
+    SparseMatrix matrix;
+    Vector       rhs;
+  };
+} // namespace Membrane

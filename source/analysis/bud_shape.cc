@@ -1,0 +1,127 @@
+#include <membrane/analysis/bud_shape.h>
+
+#include <deal.II/base/geometry_info.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  namespace
+  {
+    double wrap(const double dx)
+    {
+      return dx - std::round(dx);
+    }
+
+    double area_of_phase_a(const Surface &surface, const Vector &phi)
+    {
+      const FieldSpace       &scalars = surface.scalar_space();
+      const QGauss<dim>       quadrature(3);
+      FEValues<dim, spacedim> fe_values(surface.mapping(), scalars.fe(), quadrature, update_values | update_JxW_values);
+      std::vector<double>     values(quadrature.size());
+      double                  local = 0;
+      for (const auto &cell : scalars.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            fe_values.reinit(cell);
+            fe_values.get_function_values(phi, values);
+            for (const unsigned int q : fe_values.quadrature_point_indices())
+              if (values[q] > 0)
+                local += fe_values.JxW(q);
+          }
+      return Utilities::MPI::sum(local, scalars.communicator());
+    }
+  } // namespace
+
+  BudShape measure_bud(const Surface &surface, const Vector &phi, const unsigned int levels)
+  {
+    // Every rank gathers the edges (pairs of current vertex positions) of all cells.
+    std::vector<Point<spacedim>> local;
+    for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const auto X = surface.mapping().get_vertices(cell);
+          for (unsigned int l = 0; l < GeometryInfo<dim>::lines_per_cell; ++l)
+            {
+              local.push_back(X[GeometryInfo<dim>::line_to_cell_vertices(l, 0)]);
+              local.push_back(X[GeometryInfo<dim>::line_to_cell_vertices(l, 1)]);
+            }
+        }
+    std::vector<Point<spacedim>> edges;
+    for (const auto &part : Utilities::MPI::all_gather(surface.vector_space().communicator(), local))
+      edges.insert(edges.end(), part.begin(), part.end());
+
+    BudShape shape;
+    shape.domain_area = area_of_phase_a(surface, phi);
+    if (edges.empty())
+      return shape;
+
+    std::vector<double> z(edges.size());
+    std::transform(edges.begin(), edges.end(), z.begin(), [](const Point<spacedim> &p) { return p[2]; });
+    std::nth_element(z.begin(), z.begin() + z.size() / 2, z.end());
+    const double median = z[z.size() / 2];
+    const auto [low, high] = std::minmax_element(edges.begin(), edges.end(),
+                                                 [](const auto &a, const auto &b) { return a[2] < b[2]; });
+    shape.direction          = (*high)[2] - median >= median - (*low)[2] ? 1 : -1;
+    const Point<spacedim> apex = shape.direction > 0 ? *high : *low;
+    const auto radius = [&](const Point<spacedim> &p) {
+      return std::hypot(wrap(p[0] - apex[0]), wrap(p[1] - apex[1]));
+    };
+
+    double far_sum = 0, far_count = 0;
+    for (const auto &p : edges)
+      if (radius(p) > 0.5)
+        {
+          far_sum += p[2];
+          far_count += 1;
+        }
+    const double far = far_count > 0 ? far_sum / far_count : median;
+    shape.height     = shape.direction * (apex[2] - far);
+    if (shape.height <= 0)
+      return shape;
+
+    std::vector<double> R(levels, 0.0);
+    for (unsigned int j = 0; j < levels; ++j)
+      {
+        const double level = far + shape.direction * shape.height * (j + 0.5) / levels;
+        for (std::size_t e = 0; e + 1 < edges.size(); e += 2)
+          {
+            const Point<spacedim> &a = edges[e], &b = edges[e + 1];
+            if ((a[2] - level) * (b[2] - level) > 0 || a[2] == b[2])
+              continue;
+            const double s = (level - a[2]) / (b[2] - a[2]);
+            R[j]           = std::max(R[j], radius(a + s * (b - a)));
+          }
+      }
+    double above = 0;
+    shape.neck_ratio  = 1;
+    shape.neck_radius = R[0];
+    shape.bud_radius  = *std::max_element(R.begin(), R.end());
+    for (int j = static_cast<int>(levels) - 2; j >= 0; --j)
+      {
+        above = std::max(above, R[j + 1]);
+        if (above > 0 && R[j] / above < shape.neck_ratio)
+          {
+            shape.neck_ratio  = R[j] / above;
+            shape.neck_radius = R[j];
+            shape.bud_radius  = above;
+          }
+      }
+    return shape;
+  }
+
+  std::string classify_outcome(const BudShape &shape, const OutcomeCriteria &criteria, const bool pinch_off)
+  {
+    if (pinch_off || shape.neck_ratio < criteria.complete_neck_ratio)
+      return "complete bud";
+    if (shape.height < criteria.flat_height)
+      return "flat";
+    return "incomplete bud";
+  }
+} // namespace Membrane

@@ -1,0 +1,131 @@
+#include <membrane/io/atomic_file.h>
+#include <membrane/io/checkpoint.h>
+
+#include <deal.II/base/mpi.h>
+
+#include <fstream>
+#include <iomanip>
+#include <set>
+#include <sstream>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  namespace
+  {
+    constexpr const char *magic = "membrane-checkpoint 1";
+    using Key = std::pair<double, double>;
+
+    /// Calls f(reference vertex, vector dofs[3], scalar dof) for every owned,
+    /// unconstrained vertex of the scalar space.
+    template <typename F>
+    void for_each_owned_vertex(const Surface &surface, const F &f)
+    {
+      const FieldSpace &scalars = surface.scalar_space();
+      for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto scalar_cell = scalars.cell(cell);
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                const auto dof = scalar_cell->vertex_dof_index(v, 0);
+                if (!scalars.owned().is_element(dof) || scalars.constraints().is_constrained(dof))
+                  continue;
+                const std::array<types::global_dof_index, 3> vector_dofs{
+                  {cell->vertex_dof_index(v, 0), cell->vertex_dof_index(v, 1), cell->vertex_dof_index(v, 2)}};
+                f(cell->vertex(v), vector_dofs, dof);
+              }
+          }
+    }
+  } // namespace
+
+  void save_checkpoint(const std::string &path, const Surface &surface, const Vector &phi,
+                       const std::map<std::string, double> &scalars, const std::string &statistics_text)
+  {
+    const Vector       &D = surface.displacement();
+    std::vector<double> local;
+    std::set<types::global_dof_index> seen;
+    for_each_owned_vertex(surface, [&](const Point<spacedim> &x, const auto &vector_dofs, const auto dof) {
+      if (!seen.insert(dof).second)
+        return;
+      local.insert(local.end(), {x[0], x[1], D[vector_dofs[0]], D[vector_dofs[1]], D[vector_dofs[2]], phi[dof]});
+    });
+    const MPI_Comm comm  = surface.scalar_space().communicator();
+    const auto     parts = Utilities::MPI::gather(comm, local, 0);
+    if (Utilities::MPI::this_mpi_process(comm) != 0)
+      return;
+    std::ostringstream out;
+    out << magic << '\n' << std::setprecision(17);
+    for (const auto &[name, value] : scalars)
+      out << name << ' ' << value << '\n';
+    std::size_t n = 0;
+    for (const auto &part : parts)
+      n += part.size() / 6;
+    out << "vertices " << n << '\n';
+    for (const auto &part : parts)
+      for (std::size_t i = 0; i < part.size(); i += 6)
+        out << part[i] << ' ' << part[i + 1] << ' ' << part[i + 2] << ' ' << part[i + 3] << ' ' << part[i + 4] << ' '
+            << part[i + 5] << '\n';
+    out << "statistics\n" << statistics_text;
+    write_file_atomically(path, out.str());
+  }
+
+  std::map<std::string, double> load_checkpoint(const std::string &path, const Surface &surface,
+                                                Vector &displacement, Vector &phi, std::string &statistics_text)
+  {
+    std::ifstream in(path);
+    AssertThrow(in, ExcMessage("Entry <Checkpoint/Resume from>: cannot open the checkpoint <" + path + ">"));
+    std::string line;
+    AssertThrow(std::getline(in, line) && line == magic,
+                ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> is not a membrane checkpoint"));
+    std::map<std::string, double> scalars;
+    std::size_t                   n = 0;
+    while (std::getline(in, line))
+      {
+        std::istringstream words(line);
+        std::string        name;
+        words >> name;
+        if (name == "vertices")
+          {
+            words >> n;
+            break;
+          }
+        words >> scalars[name];
+      }
+    std::map<Key, std::array<double, 4>> values;
+    for (std::size_t i = 0; i < n && std::getline(in, line); ++i)
+      {
+        std::istringstream    words(line);
+        double                x, y;
+        std::array<double, 4> v;
+        words >> x >> y >> v[0] >> v[1] >> v[2] >> v[3];
+        values[{x, y}] = v;
+      }
+    AssertThrow(std::getline(in, line) && line == "statistics",
+                ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> is truncated"));
+    statistics_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+
+    bool all_found = true;
+    for_each_owned_vertex(surface, [&](const Point<spacedim> &x, const auto &vector_dofs, const auto dof) {
+      const auto it = values.find({x[0], x[1]});
+      if (it == values.end())
+        {
+          all_found = false;
+          return;
+        }
+      for (unsigned int c = 0; c < spacedim; ++c)
+        displacement[vector_dofs[c]] = it->second[c];
+      phi[dof] = it->second[3];
+    });
+    const MPI_Comm comm = surface.scalar_space().communicator();
+    AssertThrow(Utilities::MPI::min(all_found ? 1 : 0, comm) == 1,
+                ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> was written on another mesh (check "
+                           "<Mesh/Cells per side>)"));
+    displacement.compress(VectorOperation::insert);
+    phi.compress(VectorOperation::insert);
+    surface.vector_space().constraints().distribute(displacement);
+    surface.scalar_space().constraints().distribute(phi);
+    return scalars;
+  }
+} // namespace Membrane

@@ -1,0 +1,209 @@
+#include <membrane/physics/double_well.h>
+#include <membrane/shape_solver.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  namespace
+  {
+    constexpr unsigned int pressure_component = 3, curvature_component = 4, first_tangent_component = 5;
+    /// Fixes the constant pressure where H = 0 (see the header); dimensionless.
+    constexpr double pressure_regularization = 1e-12;
+
+    /// Frozen data of Gamma^m at one quadrature point.
+    struct PointData
+    {
+      Tensor<1, spacedim> nu, grad_phi, tangent[2], unit_tangent[2], flux; ///< flux: multiplies grad psi in the normal row
+      double              kappa = 0, excess = 0, H = 0, Y = 0, source = 0, d_phi[2] = {0, 0};
+    };
+  } // namespace
+
+  ShapeSolver::ShapeSolver(const Triangulation &triangulation, const bool periodic)
+    : periodic(periodic)
+    , space(triangulation, 7)
+  {}
+
+  void ShapeSolver::setup()
+  {
+    space.setup(periodic);
+    space.reinit_matrix(matrix);
+    rhs = space.make_owned();
+  }
+
+  void ShapeSolver::assemble(const Surface &surface, const Geometry &geometry, const Material &material,
+                             const ShapeOptions &options, const double tau, const double reference_area,
+                             const Vector &phi, const Vector &potential)
+  {
+    matrix = 0;
+    rhs    = 0;
+    const QGauss<dim>       quadrature(2);
+    const unsigned int      n_q = quadrature.size(), n_dofs = space.fe().n_dofs_per_cell();
+    FEValues<dim, spacedim> fe_values(surface.mapping(), space.fe(), quadrature,
+                                      update_values | update_gradients | update_JxW_values | update_jacobians);
+    FEValues<dim, spacedim> scalar_values(surface.mapping(), surface.scalar_space().fe(), quadrature,
+                                          update_values | update_gradients);
+    FEValues<dim, spacedim> vector_values(surface.mapping(), surface.vector_space().fe(), quadrature,
+                                          update_values | update_gradients);
+    const FEValuesExtractors::Vector all_components(0);
+
+    std::vector<double>              phi_q(n_q), H_q(n_q), Y_q(n_q);
+    std::vector<Tensor<1, spacedim>> grad_phi_q(n_q), nu_q(n_q);
+    std::vector<Tensor<2, spacedim>> grad_nu_q(n_q);
+    std::vector<PointData>           data(n_q);
+    FullMatrix<double>               local_matrix(n_dofs, n_dofs);
+    dealii::Vector<double>           local_rhs(n_dofs);
+    std::vector<types::global_dof_index> dof_indices(n_dofs);
+
+    const double sigma = material.line_tension, xi2 = std::pow(material.transition_length, 2);
+    const double tauL  = tau * material.shape_mobility;
+    const double delta = options.pressure_stabilization;
+    const double area_defect =
+      options.correct_area ? (reference_area - surface.area()) / surface.area() : 0.0;
+
+    for (const auto &cell : space.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          scalar_values.reinit(surface.scalar_space().cell(cell));
+          vector_values.reinit(surface.vector_space().cell(cell));
+          scalar_values.get_function_values(phi, phi_q);
+          scalar_values.get_function_gradients(phi, grad_phi_q);
+          scalar_values.get_function_values(geometry.mean_curvature, H_q);
+          scalar_values.get_function_values(potential, Y_q);
+          vector_values[all_components].get_function_values(geometry.normal, nu_q);
+          vector_values[all_components].get_function_gradients(geometry.normal, grad_nu_q);
+          // Reference edge lengths turn the unit-cell Jacobian into a_k = dX/du_k.
+          const double reference_length[2] = {cell->vertex(1).distance(cell->vertex(0)),
+                                               cell->vertex(2).distance(cell->vertex(0))};
+
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              PointData   &d        = data[q];
+              const double p        = phi_q[q];
+              const auto  &G        = grad_nu_q[q]; // grad_s nu: G[c][e] = d nu_c / dx_e
+              const auto  &grad_phi = grad_phi_q[q];
+              d.nu                  = nu_q[q];
+              d.grad_phi            = grad_phi;
+              d.H                   = H_q[q];
+              d.Y                   = Y_q[q];
+              d.kappa               = material.bending_rigidity->value(p);
+              d.excess              = H_q[q] - material.spontaneous_curvature->value(p);
+              for (unsigned int k = 0; k < 2; ++k)
+                {
+                  Tensor<1, spacedim> a;
+                  for (unsigned int c = 0; c < spacedim; ++c)
+                    a[c] = fe_values.jacobian(q)[c][k] / reference_length[k];
+                  d.tangent[k]      = a;
+                  d.unit_tangent[k] = a / a.norm();
+                  d.d_phi[k]   = grad_phi * a;
+                }
+              // grad psi multiplier: grad_s[kappa (H - H0)] without the H~ part, and
+              // -lap_c kappa_G in weak form, c^ij d_j phi a_i = H_nu grad phi + sym(G) grad phi.
+              const double kappa_slope = material.bending_rigidity->derivative(p);
+              const double H0_slope    = material.spontaneous_curvature->derivative(p);
+              const double H_nu        = -trace(G);
+              d.flux = (d.excess * kappa_slope - d.kappa * H0_slope) * grad_phi +
+                       material.gaussian_rigidity->derivative(p) *
+                         (H_nu * grad_phi + 0.5 * (G * grad_phi + transpose(G) * grad_phi));
+              // psi multiplier: -kappa (H - H0)|grad nu|^2 - sigma xi^2 b^ij d_i phi d_j phi + H G,
+              // with b^ij d_i phi d_j phi = -grad phi . G . grad phi.
+              const double line_density = sigma * (0.5 * xi2 * grad_phi.norm_square() + DoubleWell::value(p));
+              d.source = -d.kappa * d.excess * scalar_product(G, G) + sigma * xi2 * (grad_phi * (G * grad_phi)) +
+                         d.H * line_density;
+            }
+
+          local_matrix = 0;
+          local_rhs    = 0;
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const PointData &d  = data[q];
+              const double     ds = fe_values.JxW(q);
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                {
+                  const unsigned int         ci    = space.fe().system_to_component_index(i).first;
+                  const double               psi   = fe_values.shape_value(i, q);
+                  const Tensor<1, spacedim> &grad_psi = fe_values.shape_grad(i, q);
+                  for (unsigned int j = 0; j < n_dofs; ++j)
+                    {
+                      const unsigned int         cj = space.fe().system_to_component_index(j).first;
+                      const double               v  = fe_values.shape_value(j, q);
+                      const Tensor<1, spacedim> &gv = fe_values.shape_grad(j, q);
+                      double                     a  = 0;
+                      if (ci < spacedim) // curvature row, psi_vec = psi e_ci
+                        {
+                          if (cj == ci)
+                            a = gv * grad_psi; // (grad_s W, grad_s psi_vec)
+                          else if (cj == curvature_component)
+                            a = v * d.nu[ci] * psi;
+                          else if (cj >= first_tangent_component)
+                            a = v * d.unit_tangent[cj - first_tangent_component][ci] * psi;
+                        }
+                      else if (ci == pressure_component) // area row
+                        {
+                          if (cj < spacedim)
+                            a = gv[cj] * psi + delta * v * grad_psi[cj]; // div_s W psi + delta W . grad psi
+                          else if (cj == pressure_component)
+                            a = -delta * tauL * (gv * grad_psi) - pressure_regularization * v * psi;
+                        }
+                      else if (ci == curvature_component) // normal row
+                        {
+                          if (cj < spacedim)
+                            a = v * d.nu[cj] * psi;
+                          else if (cj == curvature_component)
+                            a = -tauL * d.kappa * (gv * grad_psi + 0.5 * d.excess * d.excess * v * psi);
+                          else if (cj == pressure_component)
+                            a = -tauL * d.H * v * psi;
+                        }
+                      else // tangential row k
+                        {
+                          const unsigned int k = ci - first_tangent_component;
+                          if (cj < spacedim)
+                            a = v * d.tangent[k][cj] * psi;
+                          else if (cj == pressure_component)
+                            a = -tauL * (gv * d.tangent[k]) * psi;
+                        }
+                      local_matrix(i, j) += a * ds;
+                    }
+
+                  double b = 0;
+                  if (ci < spacedim)
+                    b = -grad_psi[ci]; // -(grad_s X^m, grad_s psi_vec)
+                  else if (ci == pressure_component)
+                    b = area_defect * psi + delta * tauL * d.Y * (d.grad_phi * grad_psi);
+                  else if (ci == curvature_component)
+                    b = tauL * (d.flux * grad_psi + d.source * psi);
+                  else
+                    b = tauL * d.Y * d.d_phi[ci - first_tangent_component] * psi;
+                  local_rhs(i) += b * ds;
+                }
+            }
+          cell->get_dof_indices(dof_indices);
+          space.constraints().distribute_local_to_global(local_matrix, local_rhs, dof_indices, matrix, rhs);
+        }
+    matrix.compress(VectorOperation::add);
+    rhs.compress(VectorOperation::add);
+  }
+
+  ShapeUpdate ShapeSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
+                                const ShapeOptions &options, const LinearSolverOptions &solver, const double tau,
+                                const double reference_area, const Vector &phi, const Vector &potential)
+  {
+    assemble(surface, geometry, material, options, tau, reference_area, phi, potential);
+    Vector solution = space.make_owned();
+    solve_linear_system(matrix, solution, rhs, solver);
+    space.constraints().distribute(solution);
+    const Vector ghosted = space.ghosted_copy(solution);
+
+    ShapeUpdate update{surface.vector_space().make_owned(), surface.scalar_space().make_owned(),
+                       surface.scalar_space().make_owned()};
+    for (unsigned int c = 0; c < spacedim; ++c)
+      copy_component(space, ghosted, c, surface.vector_space(), update.increment, c);
+    copy_component(space, ghosted, pressure_component, surface.scalar_space(), update.pressure);
+    copy_component(space, ghosted, curvature_component, surface.scalar_space(), update.mean_curvature);
+    return update;
+  }
+} // namespace Membrane
