@@ -15,7 +15,7 @@ namespace Membrane
 
   namespace
   {
-    const char *usage = "Usage: membrane-flow [--quiet] <input.prm>\n"
+    const char *usage = "Usage: membrane-flow [--quiet] [--set 'Section/Entry=value' ...] <input.prm>\n"
                         "       membrane-flow --print-parameters [prm|json]\n";
 
     /// Collapse runs of whitespace (deal.II wraps its messages) into one space.
@@ -65,10 +65,17 @@ namespace Membrane
                                                                                 : ParameterHandler::PRM);
         return 0;
       }
-    std::string input;
-    for (const auto &a : args)
-      if (a == "--quiet")
+    std::string                                      input;
+    std::vector<std::pair<std::string, std::string>> overrides;
+    for (std::size_t i = 0; i < args.size(); ++i)
+      if (const std::string &a = args[i]; a == "--quiet")
         options.quiet = true;
+      else if (a == "--set" && i + 1 < args.size() && args[i + 1].find('=') != std::string::npos)
+        {
+          const std::string &assignment = args[++i];
+          const auto         eq         = assignment.find('=');
+          overrides.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
+        }
       else if (a == "--help" || a == "-h" || !input.empty() || a.rfind("--", 0) == 0)
         {
           if (root)
@@ -88,7 +95,7 @@ namespace Membrane
     Parameters       parameters;
     try
       {
-        read_parameter_file(input, prm, parameters);
+        read_parameter_file(input, prm, parameters, overrides);
         std::ostringstream text;
         prm.print_parameters(text, ParameterHandler::ShortPRM);
         options.parameter_text = text.str();

@@ -116,8 +116,9 @@ namespace Membrane
       prm.leave_subsection();
 
       prm.enter_subsection("Outcome");
-      prm.declare_entry("Flat height", "0.15", Patterns::Double(0, max_double),
-                        "A shape whose bud height (apex above the far field) is below this is classified flat.");
+      prm.declare_entry("Flat protrusion", "0.3", Patterns::Double(0, max_double),
+                        "The outcome is flat when the phase-A domain protrudes less than this: (domain top - mean "
+                        "height of its rim) / (diameter of a sphere of the domain's area); a hemispherical cap is 0.71.");
       prm.declare_entry("Complete neck ratio", "0.4", Patterns::Double(0, 1),
                         "A neck narrower than this fraction of the bud radius above it makes a complete bud.");
       prm.declare_entry("Pinch-off radius", "0.03", Patterns::Double(0, max_double),
@@ -243,7 +244,7 @@ namespace Membrane
     prm.leave_subsection();
 
     prm.enter_subsection("Outcome");
-    outcome.flat_height         = prm.get_double("Flat height");
+    outcome.flat_protrusion     = prm.get_double("Flat protrusion");
     outcome.complete_neck_ratio = prm.get_double("Complete neck ratio");
     pinch_off_radius            = prm.get_double("Pinch-off radius");
     prm.leave_subsection();
@@ -271,12 +272,37 @@ namespace Membrane
     prm.leave_subsection();
   }
 
-  void read_parameter_file(const std::string &filename, ParameterHandler &prm, Parameters &parameters)
+  void read_parameter_file(const std::string &filename, ParameterHandler &prm, Parameters &parameters,
+                           const std::vector<std::pair<std::string, std::string>> &overrides)
   {
     std::ifstream in(filename);
     AssertThrow(in, ExcMessage("Cannot open the parameter file <" + filename + ">"));
     Parameters::declare(prm);
     prm.parse_input(filename, "", /*skip_undefined=*/false, /*assert_mandatory_entries_are_found=*/false);
+    for (const auto &[path, value] : overrides)
+      {
+        std::vector<std::string> parts = Utilities::split_string_list(path, '/');
+        const std::string        entry = parts.back();
+        parts.pop_back();
+        for (const auto &section : parts)
+          prm.enter_subsection(section);
+        try
+          {
+            prm.set(entry, value);
+          }
+        catch (const std::exception &e)
+          {
+            // deal.II names the accepted pattern in its message ("... the given pattern <[Double 0...]>").
+            const std::string text    = e.what();
+            const auto        pattern = text.find("pattern <");
+            throw ExcMessage("--set " + path + "=" + value + ": " +
+                             (pattern == std::string::npos ? std::string("no such entry (see --print-parameters)")
+                                                           : "the value does not match the accepted " +
+                                                               text.substr(pattern, text.find('>', pattern) - pattern + 1)));
+          }
+        for (std::size_t i = 0; i < parts.size(); ++i)
+          prm.leave_subsection();
+      }
     parameters.parse(prm);
   }
 } // namespace Membrane

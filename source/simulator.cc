@@ -123,11 +123,13 @@ namespace Membrane
     Vector          displacement = surface.vector_space().make_owned();
     displacement                 = surface.displacement();
     const Vector      phi_old    = phi;
+    const Vector      pressure_old = pressure;
     const Geometry    geometry_old = geometry;
     const EnergyTerms energy_old   = energy;
     const auto        restore      = [&](const Rejection &why) {
       surface.set_displacement(displacement);
       phi      = phi_old;
+      pressure = pressure_old;
       geometry = geometry_old;
       energy   = energy_old;
       return why;
@@ -164,13 +166,6 @@ namespace Membrane
             surface.set_displacement(moved);
             pressure = update.pressure;
             phi      = phi_new; // phi~ rides on the vertices (Lagrangian)
-            if (parameters.grid_control_weight > 0)
-              {
-                TimerOutput::Scope scope(timer, "grid control");
-                const Vector normal = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
-                const Vector shift  = grid_control_displacement(surface, normal, parameters.grid_control_weight);
-                remap_correction    = move_tangentially_and_remap(surface, shift, phi);
-              }
           }
         else
           phi = phi_new;
@@ -179,10 +174,36 @@ namespace Membrane
           TimerOutput::Scope scope(timer, "geometry");
           geometry = compute_geometry(surface);
         }
+        energy = compute_energy(surface, geometry, phi, material);
+        if (parameters.evolve_shape && parameters.grid_control_weight > 0 && std::isfinite(energy.total()))
+          {
+            // Grid control re-parametrizes the surface; it is kept only if it does not
+            // raise the discrete energy (near equilibrium its O(h^2) changes would
+            // otherwise stall the energy-based step control at any tau).
+            TimerOutput::Scope scope(timer, "grid control");
+            Vector             unmoved = surface.vector_space().make_owned();
+            unmoved                    = surface.displacement();
+            const Vector      phi_lagrangian      = phi;
+            const Geometry    geometry_lagrangian = geometry;
+            const EnergyTerms energy_lagrangian   = energy;
+            const Vector shift = grid_control_displacement(surface, geometry.normal, parameters.grid_control_weight);
+            remap_correction   = move_tangentially_and_remap(surface, shift, phi);
+            geometry           = compute_geometry(surface);
+            energy             = compute_energy(surface, geometry, phi, material);
+            if (!(energy.total() <= energy_lagrangian.total() +
+                                      parameters.energy_tolerance * std::abs(energy_lagrangian.total())))
+              {
+                surface.set_displacement(unmoved);
+                phi              = phi_lagrangian;
+                geometry         = geometry_lagrangian;
+                energy           = energy_lagrangian;
+                remap_correction = 0;
+                ++grid_control_skipped;
+              }
+          }
         cell_quality = min_corner_sine(surface, geometry.normal);
-        energy       = compute_energy(surface, geometry, phi, material);
       }
-    catch (const std::exception &e)
+    catch (const std::exception &)
       {
         return restore("a linear solve failed");
       }
@@ -227,11 +248,13 @@ namespace Membrane
     stats.set("bud_radius", bud.bud_radius);
     stats.set("neck_ratio", bud.neck_ratio);
     stats.set("domain_area", bud.domain_area);
-    stats.set("budded_fraction", bud.domain_area > 0 ? std::min(1.0, bud.height / (2 * std::sqrt(bud.domain_area / M_PI))) : 0);
+    stats.set("domain_protrusion", bud.domain_protrusion);
+    stats.set("bud_direction", bud.direction);
     stats.set("max_increment", max_increment);
     stats.set("remap_mass_correction", remap_correction);
     stats.set("min_corner_sine", cell_quality);
     stats.set("rejected_steps", rejected_steps);
+    stats.set("grid_control_skipped", grid_control_skipped);
     stats.set("solver_iterations", solver_iterations);
     stats.set("wall_seconds", wall.wall_time());
     stats.end_row();
@@ -292,7 +315,7 @@ namespace Membrane
         << ",\n  \"wall_seconds\": " << wall_seconds;
     for (const char *c : {"energy", "bending_energy", "gaussian_energy", "gradient_energy", "well_energy", "area",
                           "area_drift", "mass", "mass_drift", "bud_height", "neck_radius", "bud_radius", "neck_ratio",
-                          "domain_area", "budded_fraction", "min_corner_sine"})
+                          "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine"})
       out << ",\n  \"" << c << "\": " << stats.last(c);
     out << "\n}\n";
     write_file_atomically(parameters.output_directory + "/summary.json", out.str());
@@ -377,8 +400,11 @@ namespace Membrane
         if (output_due || finished())
           {
             write_fields();
-            while (next_output_time <= time * (1 + 1e-12))
-              next_output_time += std::max(parameters.output_interval, 1e-300);
+            if (parameters.output_interval <= 0)
+              next_output_time = time; // every step
+            else
+              while (next_output_time <= time * (1 + 1e-12))
+                next_output_time += parameters.output_interval;
             if (root)
               stats.write(parameters.output_directory + "/statistics.txt");
           }

@@ -12,6 +12,8 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace Membrane
 {
@@ -56,7 +58,9 @@ namespace Membrane
     void parse(dealii::ParameterHandler &prm);
   };
 
-  /// Read a .prm file into `prm` (declared) and `parameters`; a clean message
-  /// for unknown entries and values out of range.
-  void read_parameter_file(const std::string &filename, dealii::ParameterHandler &prm, Parameters &parameters);
+  /// Read a .prm file into `prm` (declared) and `parameters`, then apply the
+  /// overrides ("Section/Subsection/Entry", value) in order; a clean message for
+  /// unknown entries and values out of range.
+  void read_parameter_file(const std::string &filename, dealii::ParameterHandler &prm, Parameters &parameters,
+                           const std::vector<std::pair<std::string, std::string>> &overrides = {});
 } // namespace Membrane

@@ -6,8 +6,10 @@
 // One time step m -> m+1 (MODEL.md section 4):
 //   1. Cahn-Hilliard on Gamma^m: phi^m -> (phi~, Y);
 //   2. shape: (X^m, phi^m, Y) -> X~ = X^m + W (ShapeSolver); phi~ rides on the vertices;
-//   3. grid control: tangential vertex smoothing with ALE remap of phi~ -> phi^{m+1};
-//   4. geometry of Gamma^{m+1} (normals, H, K), cell quality, energy F^{m+1}.
+//   3. geometry of Gamma~ and its energy F~;
+//   4. grid control: tangential vertex smoothing with ALE remap of phi~ -> phi^{m+1},
+//      kept if it does not raise the energy above F~ (else X^{m+1} = X~, phi^{m+1} = phi~);
+//   5. cell quality and the energy F^{m+1} of Gamma^{m+1}.
 // With adaptive stepping a step is rejected (state restored, tau halved) when F
 // would rise, a cell would fold or invert, or a solve fails; easy steps let tau grow.
 
@@ -50,6 +52,9 @@ namespace Membrane
     RunResult run();
 
     const Statistics &statistics() const { return stats; }
+    /// The current state (for tests and post-processing in C++).
+    const Surface &current_surface() const { return surface; }
+    const Vector  &order_parameter() const { return phi; }
 
   private:
     /// Why a trial step was rejected (empty: accepted).
@@ -82,7 +87,7 @@ namespace Membrane
     BudShape           bud;
 
     double       time = 0, tau = 0, initial_mass = 0, initial_area = 0, next_output_time = 0;
-    unsigned int step = 0, rejected_steps = 0, solver_iterations = 0;
+    unsigned int step = 0, rejected_steps = 0, solver_iterations = 0, grid_control_skipped = 0;
     /// Observables of the last accepted step, for the statistics.
     double max_increment = 0, remap_correction = 0, cell_quality = 1;
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace Membrane
 {
@@ -41,21 +42,30 @@ namespace Membrane
 
   BudShape measure_bud(const Surface &surface, const Vector &phi, const unsigned int levels)
   {
-    // Every rank gathers the edges (pairs of current vertex positions) of all cells.
+    // Every rank gathers the edges (pairs of current vertex positions, and phi
+    // there) of all cells.
     std::vector<Point<spacedim>> local;
+    std::vector<double>          local_phi;
     for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          const auto X = surface.mapping().get_vertices(cell);
+          const auto X           = surface.mapping().get_vertices(cell);
+          const auto scalar_cell = surface.scalar_space().cell(cell);
           for (unsigned int l = 0; l < GeometryInfo<dim>::lines_per_cell; ++l)
-            {
-              local.push_back(X[GeometryInfo<dim>::line_to_cell_vertices(l, 0)]);
-              local.push_back(X[GeometryInfo<dim>::line_to_cell_vertices(l, 1)]);
-            }
+            for (const unsigned int end : {0, 1})
+              {
+                const unsigned int v = GeometryInfo<dim>::line_to_cell_vertices(l, end);
+                local.push_back(X[v]);
+                local_phi.push_back(phi[scalar_cell->vertex_dof_index(v, 0)]);
+              }
         }
+    const MPI_Comm               comm = surface.vector_space().communicator();
     std::vector<Point<spacedim>> edges;
-    for (const auto &part : Utilities::MPI::all_gather(surface.vector_space().communicator(), local))
+    std::vector<double>          edge_phi;
+    for (const auto &part : Utilities::MPI::all_gather(comm, local))
       edges.insert(edges.end(), part.begin(), part.end());
+    for (const auto &part : Utilities::MPI::all_gather(comm, local_phi))
+      edge_phi.insert(edge_phi.end(), part.begin(), part.end());
 
     BudShape shape;
     shape.domain_area = area_of_phase_a(surface, phi);
@@ -82,6 +92,24 @@ namespace Membrane
           far_count += 1;
         }
     const double far = far_count > 0 ? far_sum / far_count : median;
+
+    // The phase-A domain: its extreme point along s and the mean height of its rim.
+    double top = -std::numeric_limits<double>::max(), rim_sum = 0, rim_count = 0;
+    for (std::size_t e = 0; e + 1 < edges.size(); e += 2)
+      {
+        for (const std::size_t k : {e, e + 1})
+          if (edge_phi[k] > 0)
+            top = std::max(top, shape.direction * edges[k][2]);
+        if ((edge_phi[e] > 0) != (edge_phi[e + 1] > 0))
+          {
+            const double s = edge_phi[e] / (edge_phi[e] - edge_phi[e + 1]);
+            rim_sum += edges[e][2] + s * (edges[e + 1][2] - edges[e][2]);
+            rim_count += 1;
+          }
+      }
+    if (rim_count > 0 && shape.domain_area > 0)
+      shape.domain_protrusion = (top - shape.direction * rim_sum / rim_count) /
+                                (2 * std::sqrt(shape.domain_area / (4 * M_PI)));
     shape.height     = shape.direction * (apex[2] - far);
     if (shape.height <= 0)
       return shape;
@@ -120,7 +148,7 @@ namespace Membrane
   {
     if (pinch_off || shape.neck_ratio < criteria.complete_neck_ratio)
       return "complete bud";
-    if (shape.height < criteria.flat_height)
+    if (shape.domain_protrusion < criteria.flat_protrusion)
       return "flat";
     return "incomplete bud";
   }

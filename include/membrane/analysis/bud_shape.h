@@ -12,7 +12,12 @@
 //  - neck: the level j minimising R_j / max_{i > j} R_i (a constriction with a wider
 //    bud above it); neck_ratio = that ratio, capped at 1 (1: no neck, a dome);
 //    neck_radius = R_j, bud_radius = max_{i > j} R_i;
-//  - domain_area: the area where phi > 0 (phase A).
+//  - domain_area: the area where phi > 0 (phase A);
+//  - domain_protrusion: how far the phase-A domain stands out of the membrane
+//    around it: s (z_top - z_rim) / (2 R_s), where z_top is the domain's extreme
+//    point along s, z_rim the mean height of its boundary (phi = 0 on cell edges)
+//    and R_s = sqrt(domain_area / 4 pi) the radius of a sphere of the domain's
+//    area. 0: a flat domain; ~0.7: a hemispherical cap; 1: a complete sphere.
 // Horizontal distances are taken modulo the unit period.
 
 #include <membrane/surface/surface.h>
@@ -29,13 +34,14 @@ namespace Membrane
     double bud_radius  = 0;
     double neck_ratio  = 1;
     double domain_area = 0;
+    double domain_protrusion = 0;
   };
 
   BudShape measure_bud(const Surface &surface, const Vector &phi_ghosted, unsigned int levels = 64);
 
   struct OutcomeCriteria
   {
-    double flat_height        = 0.15; ///< below: flat
+    double flat_protrusion     = 0.3; ///< domain_protrusion below: flat
     double complete_neck_ratio = 0.4; ///< neck_ratio below: complete bud
   };
 

@@ -1,0 +1,262 @@
+// The coupled shape step: relaxation of a homogeneous membrane, the pressure
+// stabilization against checkerboard modes, and the order of convergence of a
+// short smooth evolution under mesh refinement.
+#include "fixed_surface.h"
+
+#include <membrane/parameters.h>
+#include <membrane/shape_solver.h>
+#include <membrane/simulator.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+namespace
+{
+  using namespace Membrane;
+
+  /// Parameters from .prm text (everything else at its default).
+  Parameters make_parameters(const std::string &text)
+  {
+    dealii::ParameterHandler prm;
+    Parameters::declare(prm);
+    prm.parse_input_from_string(text);
+    Parameters parameters;
+    parameters.parse(prm);
+    return parameters;
+  }
+
+  const std::string homogeneous = R"(
+subsection Initial phase
+  set Type = uniform
+  set Uniform value = -1
+end
+subsection Material
+  set Line tension = 1
+  set Transition length = 0.1
+  set Shape mobility = 1
+end
+subsection Output
+  set Write VTU = false
+end
+)";
+
+  /// Column of the statistics as a vector.
+  std::vector<double> column(const Statistics &stats, const std::string &name)
+  {
+    std::vector<double> values;
+    std::istringstream  in(stats.to_text());
+    std::string         line;
+    std::getline(in, line);
+    std::istringstream header(line.substr(1));
+    std::vector<std::string> names;
+    for (std::string n; header >> n;)
+      names.push_back(n);
+    const auto index = std::find(names.begin(), names.end(), name) - names.begin();
+    while (std::getline(in, line))
+      {
+        std::istringstream row(line);
+        std::string        word;
+        for (long i = 0; i <= index; ++i)
+          row >> word;
+        values.push_back(std::strtod(word.c_str(), nullptr));
+      }
+    return values;
+  }
+
+  /// Nodal values of a field of `space` keyed by the vertex's grid indices (i, j) on an n x n mesh.
+  std::map<std::pair<int, int>, double> nodal_values(const FieldSpace &space, const Vector &field, const int n,
+                                                     const unsigned int component = 0)
+  {
+    std::map<std::pair<int, int>, double> values;
+    for (const auto &cell : space.dof_handler().active_cell_iterators())
+      for (const unsigned int v : cell->vertex_indices())
+        {
+          const auto x = cell->vertex(v);
+          values[{static_cast<int>(std::lround(x[0] * n)) % n, static_cast<int>(std::lround(x[1] * n)) % n}] =
+            field[cell->vertex_dof_index(v, component)];
+        }
+    return values;
+  }
+} // namespace
+
+// A homogeneous membrane (pure phase B, kappa = 1, H0 = 0) relaxes from a shape
+// with a short-wavelength perturbation: the energy never increases, no step is
+// rejected at the chosen tau bounds, area is kept, and the surface pressure
+// ends uniform (at equilibrium grad gamma = 0 by the tangential law).
+TEST(Shape, HomogeneousMembraneRelaxesWithMonotoneEnergyAndUniformPressure)
+{
+  const std::string dir = std::filesystem::temp_directory_path() / "membrane_relax";
+  const Parameters  parameters = make_parameters(homogeneous + R"(
+subsection Mesh
+  set Cells per side = 16
+end
+subsection Initial shape
+  set Shape = cosine modes
+  set Cosine modes = 0.06 1 1; 0.06 1 -1; 0.01 2 1
+end
+subsection Time stepping
+  set End time = 0.2
+  set Time step = 1e-4
+  set Maximum time step = 0.02
+end
+subsection Output
+  set Directory = )" + dir + "\nend\n");
+  Simulator       simulator(parameters, RunOptions{true, "", "test"});
+  const RunResult result = simulator.run();
+  EXPECT_FALSE(result.failed) << result.stop_reason;
+
+  const auto energy = column(simulator.statistics(), "energy");
+  for (std::size_t i = 1; i < energy.size(); ++i)
+    EXPECT_LE(energy[i], energy[i - 1] * (1 + 1e-10)) << "step " << i;
+  EXPECT_LT(energy.back(), 0.7 * energy.front());
+  EXPECT_EQ(simulator.statistics().last("rejected_steps"), 0);
+  EXPECT_LT(std::abs(simulator.statistics().last("area_drift")), 1e-6);
+
+  const double gamma_min = simulator.statistics().last("gamma_min");
+  const double gamma_max = simulator.statistics().last("gamma_max");
+  std::cout << "energy " << energy.front() << " -> " << energy.back() << ", gamma in [" << gamma_min << ", "
+            << gamma_max << "]" << std::endl;
+  EXPECT_LT(gamma_max - gamma_min, 1e-3 * std::max(std::abs(gamma_min), std::abs(gamma_max)));
+}
+
+// Equal-order Q1 for (W, gamma): without stabilization the surface pressure of a
+// single shape step on a uniform mesh carries a checkerboard (-1)^(i+j) mode;
+// with the default stabilization its checkerboard content is small.
+TEST(Shape, PressureStabilizationRemovesCheckerboard)
+{
+  constexpr int          n = 16;
+  Testing::FixedSurface setup(n);
+  set_bump(setup.surface, 0.5, 1.3);
+  setup.update_geometry();
+  setup.material.line_tension   = 90;
+  setup.material.transition_length = 0.06;
+  setup.material.bending_rigidity  = make_linear_law(1.5, 1.5);
+  setup.material.gaussian_rigidity = make_linear_law(-1, -1);
+  setup.material.shape_mobility    = 5e-4;
+  setup.material.phase_mobility    = 0.05;
+  InitialPhaseOptions initial;
+  initial.type           = "bump";
+  initial.prescribe_mass = true;
+  initial.mass           = -0.85;
+  setup.set_phase(initial);
+  const double tau = 1e-3;
+  Vector       next = setup.surface.scalar_space().make_owned(), potential = setup.surface.scalar_space().make_owned();
+  setup.solver.step(setup.surface, setup.geometry, setup.material, setup.options, LinearSolverOptions(), tau,
+                    setup.phi, next, potential);
+  const Vector potential_ghosted = setup.surface.scalar_space().ghosted_copy(potential);
+
+  const auto checkerboard = [&](const double delta) {
+    ShapeSolver solver(setup.tria, true);
+    solver.setup();
+    ShapeOptions options;
+    options.pressure_stabilization = delta;
+    const ShapeUpdate update = solver.step(setup.surface, setup.geometry, setup.material, options,
+                                           LinearSolverOptions(), tau, setup.surface.area(), setup.phi,
+                                           potential_ghosted);
+    const auto gamma = nodal_values(setup.surface.scalar_space(), update.pressure, n);
+    double     mean = 0, alternating = 0, variation = 0;
+    for (const auto &[ij, g] : gamma)
+      mean += g / gamma.size();
+    for (const auto &[ij, g] : gamma)
+      {
+        alternating += ((ij.first + ij.second) % 2 ? -1 : 1) * g / gamma.size();
+        variation += std::abs(g - mean) / gamma.size();
+      }
+    return std::abs(alternating) / variation;
+  };
+  const double stabilized = checkerboard(0.5), unstabilized = checkerboard(0.0);
+  std::cout << "checkerboard content of gamma: " << unstabilized << " without, " << stabilized
+            << " with stabilization" << std::endl;
+  EXPECT_GT(unstabilized, 0.3);
+  EXPECT_LT(stabilized, 0.02);
+}
+
+// A short smooth coupled evolution (curved patch, smooth phi, phi-dependent
+// kappa and H0) on 10, 20, 40 and 80 cells per side with the same time steps:
+// the differences between successive meshes of the vertex positions and of phi
+// at the coarse vertices fall by about 4 per refinement (observed order ~2).
+TEST(Shape, SmoothEvolutionConvergesAtSecondOrder)
+{
+  const auto run = [](const int n, std::map<std::pair<int, int>, double> &phi_values,
+                      std::array<std::map<std::pair<int, int>, double>, 3> &displacement_values) {
+    const std::string dir        = std::filesystem::temp_directory_path() / ("membrane_eoc_" + std::to_string(n));
+    const Parameters  parameters = make_parameters(R"(
+subsection Mesh
+  set Cells per side = )" + std::to_string(n) + R"(
+end
+subsection Initial shape
+  set Shape = cosine modes
+  set Cosine modes = 0.05 1 1; 0.05 1 -1
+end
+subsection Initial phase
+  set Type = expression
+  set Expression = 0.3 * cos(2 * pi * x) + 0.2 * sin(2 * pi * y)
+end
+subsection Material
+  subsection Bending rigidity
+    set Phase A value = 1
+    set Phase B value = 2
+  end
+  subsection Spontaneous curvature
+    set Phase A value = -2
+    set Phase B value = 2
+  end
+  set Line tension = 1
+  set Transition length = 0.2
+  set Shape mobility = 1
+  set Phase mobility = 0.01
+end
+subsection Time stepping
+  set End time = 1e-3
+  set Time step = 1e-4
+  set Adaptive = false
+end
+subsection Shape
+  set Grid control weight = 0
+end
+subsection Output
+  set Write VTU = false
+  set Directory = )" + dir + "\nend\n");
+    Simulator simulator(parameters, RunOptions{true, "", "test"});
+    EXPECT_FALSE(simulator.run().failed);
+    const Surface &surface = simulator.current_surface();
+    phi_values             = nodal_values(surface.scalar_space(), simulator.order_parameter(), n);
+    for (unsigned int c = 0; c < 3; ++c)
+      displacement_values[c] = nodal_values(surface.vector_space(), surface.displacement(), n, c);
+  };
+
+  const std::vector<int> meshes = {10, 20, 40, 80};
+  std::vector<std::map<std::pair<int, int>, double>>               phi(meshes.size());
+  std::vector<std::array<std::map<std::pair<int, int>, double>, 3>> displacement(meshes.size());
+  for (std::size_t k = 0; k < meshes.size(); ++k)
+    run(meshes[k], phi[k], displacement[k]);
+
+  // Max difference between meshes k and k+1 at the vertices of the coarsest mesh.
+  const auto difference = [&](const std::size_t k, const auto &field) {
+    double worst = 0;
+    for (int i = 0; i < meshes[0]; ++i)
+      for (int j = 0; j < meshes[0]; ++j)
+        {
+          const int r0 = meshes[k] / meshes[0], r1 = meshes[k + 1] / meshes[0];
+          worst = std::max(worst, std::abs(field(k, i * r0, j * r0) - field(k + 1, i * r1, j * r1)));
+        }
+    return worst;
+  };
+  const auto phase = [&](const std::size_t k, const int i, const int j) { return phi[k].at({i, j}); };
+  const auto height = [&](const std::size_t k, const int i, const int j) { return displacement[k][2].at({i, j}); };
+  for (std::size_t k = 0; k + 2 < meshes.size(); ++k)
+    {
+      const double order_phi    = std::log2(difference(k, phase) / difference(k + 1, phase));
+      const double order_height = std::log2(difference(k, height) / difference(k + 1, height));
+      std::cout << "meshes " << meshes[k] << "/" << meshes[k + 1] << "/" << meshes[k + 2] << ": observed order phi "
+                << order_phi << ", height " << order_height << std::endl;
+      if (k + 3 == meshes.size())
+        {
+          EXPECT_NEAR(order_phi, 2.0, 0.3);
+          EXPECT_NEAR(order_height, 2.0, 0.3);
+        }
+    }
+}
