@@ -96,6 +96,7 @@ namespace Membrane
     tau                = scalars.at("tau");
     step               = static_cast<unsigned int>(scalars.at("step"));
     rejected_steps     = static_cast<unsigned int>(scalars.at("rejected_steps"));
+    grid_control_skipped = static_cast<unsigned int>(scalars.at("grid_control_skipped"));
     initial_area       = scalars.at("initial_area");
     initial_mass       = scalars.at("initial_mass");
     next_output_time   = scalars.at("next_output_time");
@@ -281,6 +282,7 @@ namespace Membrane
                      {"tau", tau},
                      {"step", step},
                      {"rejected_steps", rejected_steps},
+                     {"grid_control_skipped", grid_control_skipped},
                      {"initial_area", initial_area},
                      {"initial_mass", initial_mass},
                      {"next_output_time", next_output_time}},

@@ -1,0 +1,45 @@
+#!/usr/bin/python3
+"""Check a finished run directory (statistics.txt and summary.json).
+Usage: check_run.py <dir> [--direction +1|-1] [--max-drift X] [--outcome NAME]
+Always asserts: the run did not fail, and the discrete energy never increases
+from one accepted step to the next (beyond 1e-10 relative)."""
+import argparse
+import json
+import sys
+
+import numpy as np
+
+parser = argparse.ArgumentParser()
+parser.add_argument("dir")
+parser.add_argument("--direction", type=int)
+parser.add_argument("--max-drift", type=float)
+parser.add_argument("--outcome")
+args = parser.parse_args()
+
+with open(f"{args.dir}/statistics.txt") as f:
+    names = f.readline().lstrip("#").split()
+    data = np.atleast_2d(np.loadtxt(f))
+column = {n: data[:, i] for i, n in enumerate(names)}
+with open(f"{args.dir}/summary.json") as f:
+    summary = json.load(f)
+
+ok = True
+def check(condition, message):
+    global ok
+    print(("ok      " if condition else "FAILED  ") + message)
+    ok = ok and condition
+
+check(not summary["failed"], f"run finished: {summary['stop_reason']} after {summary['steps']} steps")
+energy = column["energy"]
+rises = np.diff(energy) / np.abs(energy[:-1])
+check(len(energy) > 5 and rises.max() <= 1e-10,
+      f"energy {energy[0]:.6g} -> {energy[-1]:.6g} over {len(energy) - 1} steps, largest relative rise {rises.max():.2e}")
+if args.max_drift is not None:
+    area, mass = np.abs(column["area_drift"]).max(), np.abs(column["mass_drift"]).max()
+    check(max(area, mass) <= args.max_drift, f"area drift {area:.2e}, mass drift {mass:.2e} <= {args.max_drift:g}")
+if args.direction is not None:
+    check(summary["bud_direction"] == args.direction,
+          f"bud direction {summary['bud_direction']:+g} (expected {args.direction:+d})")
+if args.outcome is not None:
+    check(summary["outcome"] == args.outcome, f"outcome '{summary['outcome']}' (expected '{args.outcome}')")
+sys.exit(0 if ok else 1)
