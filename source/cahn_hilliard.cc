@@ -4,6 +4,8 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <optional>
+
 namespace Membrane
 {
   using namespace dealii;
@@ -90,11 +92,22 @@ namespace Membrane
   unsigned int CahnHilliardSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
                                         const CahnHilliardOptions &options, const LinearSolverOptions &solver,
                                         const double tau, const Vector &phi_old, Vector &phi_new,
-                                        Vector &chemical_potential)
+                                        Vector &chemical_potential, TimerOutput *timer)
   {
-    assemble(surface, geometry, material, options, tau, phi_old);
-    Vector solution = space.make_owned();
-    const unsigned int iterations = solve_linear_system(matrix, solution, rhs, solver);
+    {
+      std::optional<TimerOutput::Scope> scope;
+      if (timer)
+        scope.emplace(*timer, "Cahn-Hilliard assembly");
+      assemble(surface, geometry, material, options, tau, phi_old);
+    }
+    Vector       solution   = space.make_owned();
+    unsigned int iterations = 0;
+    {
+      std::optional<TimerOutput::Scope> scope;
+      if (timer)
+        scope.emplace(*timer, "Cahn-Hilliard solve");
+      iterations = solve_linear_system(matrix, solution, rhs, solver);
+    }
     space.constraints().distribute(solution);
     const Vector solution_ghosted = space.ghosted_copy(solution);
     copy_component(space, solution_ghosted, 0, surface.scalar_space(), phi_new);

@@ -4,6 +4,8 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <optional>
+
 namespace Membrane
 {
   using namespace dealii;
@@ -190,11 +192,22 @@ namespace Membrane
 
   ShapeUpdate ShapeSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
                                 const ShapeOptions &options, const LinearSolverOptions &solver, const double tau,
-                                const double reference_area, const Vector &phi, const Vector &potential)
+                                const double reference_area, const Vector &phi, const Vector &potential,
+                                TimerOutput *timer)
   {
-    assemble(surface, geometry, material, options, tau, reference_area, phi, potential);
+    {
+      std::optional<TimerOutput::Scope> scope;
+      if (timer)
+        scope.emplace(*timer, "shape assembly");
+      assemble(surface, geometry, material, options, tau, reference_area, phi, potential);
+    }
     Vector solution = space.make_owned();
-    solve_linear_system(matrix, solution, rhs, solver);
+    {
+      std::optional<TimerOutput::Scope> scope;
+      if (timer)
+        scope.emplace(*timer, "shape solve");
+      solve_linear_system(matrix, solution, rhs, solver);
+    }
     space.constraints().distribute(solution);
     const Vector ghosted = space.ghosted_copy(solution);
 

@@ -140,11 +140,8 @@ namespace Membrane
     Vector potential = surface.scalar_space().make_owned();
     try
       {
-        {
-          TimerOutput::Scope scope(timer, "Cahn-Hilliard step");
-          solver_iterations = cahn_hilliard.step(surface, geometry, material, parameters.cahn_hilliard,
-                                                 parameters.linear_solver, tau_trial, phi, phi_new, potential);
-        }
+        solver_iterations = cahn_hilliard.step(surface, geometry, material, parameters.cahn_hilliard,
+                                               parameters.linear_solver, tau_trial, phi, phi_new, potential, &timer);
         if (!std::isfinite(phi_new.l2_norm()) || phi_new.linfty_norm() > 10)
           return restore("phi became non-finite or |phi| > 10");
         chemical_potential = potential;
@@ -153,12 +150,9 @@ namespace Membrane
         remap_correction = 0;
         if (parameters.evolve_shape)
           {
-            ShapeUpdate update;
-            {
-              TimerOutput::Scope scope(timer, "shape step");
-              update = shape_solver.step(surface, geometry, material, parameters.shape_options,
-                                         parameters.linear_solver, tau_trial, initial_area, phi, chemical_potential);
-            }
+            const ShapeUpdate update =
+              shape_solver.step(surface, geometry, material, parameters.shape_options, parameters.linear_solver,
+                                tau_trial, initial_area, phi, chemical_potential, &timer);
             max_increment = update.increment.linfty_norm();
             if (!std::isfinite(update.increment.l2_norm()) || !std::isfinite(update.pressure.l2_norm()))
               return restore("the shape solve gave non-finite values");

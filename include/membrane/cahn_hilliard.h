@@ -15,6 +15,8 @@
 #include <membrane/solvers/linear_solver.h>
 #include <membrane/surface/geometry.h>
 
+#include <deal.II/base/timer.h>
+
 #include <string>
 
 namespace Membrane
@@ -31,10 +33,12 @@ namespace Membrane
     CahnHilliardSolver(const Triangulation &triangulation, bool periodic);
     void setup();
 
-    /// phi^m -> phi^{m+1}; returns the linear-solver iteration count.
+    /// phi^m -> phi^{m+1}; returns the linear-solver iteration count. `timer`
+    /// (optional) gets the sections "Cahn-Hilliard assembly" and "Cahn-Hilliard solve".
     unsigned int step(const Surface &surface, const Geometry &geometry, const Material &material,
                       const CahnHilliardOptions &options, const LinearSolverOptions &solver, double tau,
-                      const Vector &phi_old_ghosted, Vector &phi_new_owned, Vector &chemical_potential_owned);
+                      const Vector &phi_old_ghosted, Vector &phi_new_owned, Vector &chemical_potential_owned,
+                      dealii::TimerOutput *timer = nullptr);
 
   private:
     void assemble(const Surface &surface, const Geometry &geometry, const Material &material,

@@ -40,6 +40,8 @@
 #include <membrane/solvers/linear_solver.h>
 #include <membrane/surface/geometry.h>
 
+#include <deal.II/base/timer.h>
+
 namespace Membrane
 {
   struct ShapeOptions
@@ -62,9 +64,11 @@ namespace Membrane
     ShapeSolver(const Triangulation &triangulation, bool periodic);
     void setup();
 
+    /// One step; `timer` (optional) gets the sections "shape assembly" and "shape solve".
     ShapeUpdate step(const Surface &surface, const Geometry &geometry, const Material &material,
                      const ShapeOptions &options, const LinearSolverOptions &solver, double tau,
-                     double reference_area, const Vector &phi_ghosted, const Vector &potential_ghosted);
+                     double reference_area, const Vector &phi_ghosted, const Vector &potential_ghosted,
+                     dealii::TimerOutput *timer = nullptr);
 
   private:
     void assemble(const Surface &surface, const Geometry &geometry, const Material &material,

@@ -146,7 +146,8 @@ namespace Membrane
 
   std::string classify_outcome(const BudShape &shape, const OutcomeCriteria &criteria, const bool pinch_off)
   {
-    if (pinch_off || shape.neck_ratio < criteria.complete_neck_ratio)
+    if (pinch_off || shape.neck_ratio < criteria.complete_neck_ratio ||
+        shape.domain_protrusion > criteria.complete_protrusion)
       return "complete bud";
     if (shape.domain_protrusion < criteria.flat_protrusion)
       return "flat";

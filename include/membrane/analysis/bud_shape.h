@@ -41,10 +41,13 @@ namespace Membrane
 
   struct OutcomeCriteria
   {
-    double flat_protrusion     = 0.3; ///< domain_protrusion below: flat
-    double complete_neck_ratio = 0.4; ///< neck_ratio below: complete bud
+    double flat_protrusion     = 0.3;  ///< domain_protrusion below: flat
+    double complete_protrusion = 0.95; ///< domain_protrusion above: complete bud (the domain is a closed sphere)
+    double complete_neck_ratio = 0.4;  ///< neck_ratio below: complete bud
   };
 
-  /// "flat", "incomplete bud" or "complete bud" (a pinch-off stop is always complete).
+  /// "flat", "incomplete bud" or "complete bud" (a pinch-off stop is always
+  /// complete; so is a domain that protrudes as far as a sphere of its area, or a
+  /// shape with a neck narrower than complete_neck_ratio times the bud above it).
   std::string classify_outcome(const BudShape &shape, const OutcomeCriteria &criteria, bool pinch_off);
 } // namespace Membrane

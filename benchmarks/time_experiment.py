@@ -1,0 +1,49 @@
+#!/usr/bin/python3
+"""Time one full experiment run and report the cost per step by phase.
+
+Runs membrane-flow on an input file (VTU output off, everything else as in the
+file), reads the run's wall-time table and statistics, and prints: total wall
+time, accepted and rejected steps, and milliseconds per accepted step for
+assembly, solves, grid control, geometry and the rest.
+
+Usage: time_experiment.py <membrane-flow> <input.prm> [output-dir]
+Example: benchmarks/time_experiment.py build/membrane-flow experiments/7.3-budding.prm
+"""
+import json
+import re
+import subprocess
+import sys
+
+exe, prm = sys.argv[1], sys.argv[2]
+out = sys.argv[3] if len(sys.argv) > 3 else "results/benchmark"
+log = subprocess.run([exe, "--set", "Output/Write VTU=false", "--set", f"Output/Directory={out}", prm],
+                     check=True, capture_output=True, text=True).stdout
+sections = {}
+for line in log.splitlines():
+    m = re.match(r"\|\s*([A-Za-z -]+?)\s*\|\s*(\d+)\s*\|\s*([\d.e+-]+)s", line)
+    if m and m.group(1) not in ("Section", "Total wallclock time elapsed"):
+        sections[m.group(1)] = float(m.group(3))
+total = float(re.search(r"Total wallclock time elapsed\s*\|\s*([\d.e+-]+)s", log).group(1))
+with open(f"{out}/summary.json") as f:
+    summary = json.load(f)
+steps = summary["steps"]
+groups = {
+    "assembly": ["Cahn-Hilliard assembly", "shape assembly"],
+    "solves": ["Cahn-Hilliard solve", "shape solve"],
+    "grid control (incl. its geometry)": ["grid control"],
+    "geometry": ["geometry"],
+    "statistics": ["statistics"],
+}
+print(f"{prm}: {summary['stop_reason']}, outcome {summary['outcome']}")
+print(f"wall time {total:.1f} s, {steps} accepted steps, {summary['rejected_steps']} rejected, t = {summary['time']:.4g}")
+print(f"{'phase':36s} {'total s':>9s} {'ms/step':>9s} {'share':>7s}")
+accounted = 0
+for name, keys in groups.items():
+    seconds = sum(sections.get(k, 0) for k in keys)
+    accounted += seconds
+    print(f"{name:36s} {seconds:9.2f} {1000 * seconds / steps:9.1f} {100 * seconds / total:6.1f}%")
+    for k in keys:
+        if len(keys) > 1 and k in sections:
+            print(f"  {k:34s} {sections[k]:9.2f} {1000 * sections[k] / steps:9.1f}")
+print(f"{'other (setup, output, checkpoints)':36s} {total - accounted:9.2f} {1000 * (total - accounted) / steps:9.1f} "
+      f"{100 * (total - accounted) / total:6.1f}%")
