@@ -3,6 +3,7 @@
 // short smooth evolution under mesh refinement.
 #include "fixed_surface.h"
 
+#include <membrane/analysis/bud_shape.h>
 #include <membrane/parameters.h>
 #include <membrane/shape_solver.h>
 #include <membrane/simulator.h>
@@ -259,4 +260,43 @@ subsection Output
           EXPECT_NEAR(order_height, 2.0, 0.3);
         }
     }
+}
+
+// Bud observables on the bump z = a1 (1 + cos(pi rho / R0)): the height is the
+// apex 2 a1 above the flat corners, a dome has no neck, and mirroring the shape
+// turns the bud direction. The phase-A disc phi > 0 has the area of its disc
+// on the surface.
+TEST(Shape, BudObservablesOfTheBump)
+{
+  Testing::FixedSurface setup(32);
+  const double          a1 = set_bump(setup.surface, 0.5, 1.3);
+  InitialPhaseOptions   initial;
+  initial.type        = "bump";
+  initial.bump_height = 1.0; // phi = cos(pi rho / R0) > 0 for rho < R0 / 2
+  setup.set_phase(initial);
+
+  const BudShape up = measure_bud(setup.surface, setup.phi);
+  EXPECT_EQ(up.direction, 1);
+  EXPECT_NEAR(up.height, 2 * a1, 1e-12);
+  EXPECT_EQ(up.neck_ratio, 1.0);
+  // The disc rho < 1/4 on the surface: integral of 2 pi rho sqrt(1 + z'(rho)^2) (midpoint rule);
+  // the indicator phi > 0 is sampled at quadrature points, hence the 3 % bound.
+  double exact = 0;
+  for (int k = 0; k < 10000; ++k)
+    {
+      const double rho = (k + 0.5) * 0.25 / 10000, slope = 2 * M_PI * a1 * std::sin(2 * M_PI * rho);
+      exact += 2 * M_PI * rho * std::sqrt(1 + slope * slope) * 0.25 / 10000;
+    }
+  EXPECT_NEAR(up.domain_area / exact, 1.0, 0.03);
+  EXPECT_EQ(classify_outcome(up, OutcomeCriteria(), false), "incomplete bud");
+  EXPECT_EQ(classify_outcome(up, OutcomeCriteria(), true), "complete bud");
+
+  Vector mirrored = setup.surface.vector_space().make_owned();
+  mirrored        = setup.surface.displacement();
+  mirrored *= -1.0;
+  setup.surface.set_displacement(mirrored);
+  const BudShape down = measure_bud(setup.surface, setup.phi);
+  EXPECT_EQ(down.direction, -1);
+  EXPECT_NEAR(down.height, 2 * a1, 1e-12);
+  EXPECT_NEAR(down.domain_protrusion, up.domain_protrusion, 1e-12);
 }

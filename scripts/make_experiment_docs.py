@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""Write docs/experiments.md and its pictures from finished experiment runs.
+
+For each experiment in EXPERIMENTS whose results/<name>/summary.json exists:
+a picture of the final surface coloured by phi, the history plot (energy,
+conservation, bud observables), and a table row with the measured outcome.
+Usage (after scripts/run_experiments.sh): make_experiment_docs.py [results-dir] [docs-dir]"""
+import json
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+results = sys.argv[1] if len(sys.argv) > 1 else 'results'
+docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
+images = os.path.join(docs, 'images', 'experiments')
+os.makedirs(images, exist_ok=True)
+
+# name, command, what the paper reports, camera elevation
+EXPERIMENTS = [
+    ('7.1-sorting-patch', 'membrane-flow experiments/7.1-sorting-patch.prm',
+     'the mixture sorts into a single domain of the minority phase, which buds; energy decays', 35),
+    ('7.2-kappa-linear', 'membrane-flow experiments/7.2-kappa-linear.prm',
+     'linear kappa(phi): a sorting pattern different from the tanh law', 35),
+    ('7.2-kappa-tanh', 'membrane-flow experiments/7.2-kappa-tanh.prm',
+     'tanh kappa(phi): a sorting pattern different from the linear law', 35),
+    ('7.3-budding', 'membrane-flow experiments/7.3-budding.prm',
+     'a single bud grows from the centred domain, near equilibrium at t = 3.1', 20),
+    ('7.4A-sigma90', 'membrane-flow experiments/7.4A-sigma90.prm', 'incomplete bud (sigma = 90)', 20),
+    ('7.4B-sigma540', 'membrane-flow experiments/7.4B-sigma540.prm', 'more budded, still incomplete (sigma = 540)', 20),
+    ('7.4C-sigma630', 'membrane-flow experiments/7.4C-sigma630.prm', 'complete bud (sigma = 630)', 15),
+    ('7.4C-sigma1000', "membrane-flow --set 'Material/Line tension=1000' --set "
+     "'Output/Directory=results/7.4C-sigma1000' experiments/7.4C-sigma630.prm",
+     '(not in the paper) the 7.4 C setup above the critical sigma of this discretization', 10),
+    ('7.4D-small-domain', 'membrane-flow experiments/7.4D-small-domain.prm',
+     'the smaller domain does not bud where the larger one (7.4 C) does', 20),
+    ('7.4E-opposite-side', 'membrane-flow experiments/7.4E-opposite-side.prm',
+     'the bud forms on the side opposite to the initial bump', 10),
+]
+
+rows, sections = [], []
+for name, command, paper, elev in EXPERIMENTS:
+    run = os.path.join(results, name)
+    summary_path = os.path.join(run, 'summary.json')
+    if not os.path.exists(summary_path):
+        print(f'skipping {name}: no {summary_path}')
+        continue
+    with open(summary_path) as f:
+        s = json.load(f)
+    shape_png, history_png = f'{name}.png', f'{name}-history.png'
+    subprocess.run(['/usr/bin/python3', os.path.join(HERE, 'render_surface.py'), os.path.join(run, 'surface.pvd'),
+                    os.path.join(images, shape_png), '--size', '640x480', '--elev', str(elev)], check=True)
+    subprocess.run(['/usr/bin/python3', os.path.join(HERE, 'plot_history.py'), run, '-o',
+                    os.path.join(images, history_png), '--title', name], check=True)
+    direction = 'up' if s['bud_direction'] > 0 else 'down'
+    rows.append(f"| {name} | {paper} | **{s['outcome']}** ({direction}) | {s['time']:.3g} | {s['steps']} "
+                f"({s['rejected_steps']}) | {s['energy']:.4g} | {s['bud_height']:.3f} | {s['neck_radius']:.3f} | "
+                f"{s['domain_protrusion']:.2f} | {s['area_drift']:.1e} | {s['mass_drift']:.1e} | "
+                f"{s['wall_seconds']:.0f} s |")
+    sections.append(f"### {name}\n\nPaper: {paper}. Here: **{s['outcome']}**, stopped by "
+                    f"\"{s['stop_reason']}\".\n\n```sh\n{command}\n```\n\n"
+                    f"![{name} final shape](images/experiments/{shape_png})\n"
+                    f"![{name} history](images/experiments/{history_png})\n")
+
+with open(os.path.join(HERE, 'experiments_header.md')) as f:
+    header = f.read()
+table = ('| run | paper | outcome here (bud side) | t end | steps (rejected) | F end | bud height | neck radius | '
+         'protrusion | area drift | mass drift | wall |\n|' + '---|' * 12 + '\n' + '\n'.join(rows) + '\n')
+with open(os.path.join(docs, 'experiments.md'), 'w') as f:
+    f.write(header + '\n## Results\n\n' + table + '\n' + '\n'.join(sections))
+print(f"wrote {os.path.join(docs, 'experiments.md')} with {len(rows)} experiments")

@@ -1,0 +1,58 @@
+#!/usr/bin/python3
+"""Plot the history of one or more runs from their statistics.txt: the free
+energy and its terms, the conservation errors (area and integral phi ds) and
+the bud observables (height, neck radius, domain protrusion) against time.
+Usage: plot_history.py <run-dir> [<run-dir> ...] -o out.png [--labels a,b] [--title T]"""
+import argparse
+import os
+
+import matplotlib
+matplotlib.use('Agg')
+import matplotlib.pyplot as plt
+import numpy as np
+
+
+def load(run):
+    with open(os.path.join(run, 'statistics.txt')) as f:
+        names = f.readline().lstrip('#').split()
+        data = np.atleast_2d(np.loadtxt(f))
+    return {n: data[:, i] for i, n in enumerate(names)}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument('runs', nargs='+')
+    parser.add_argument('-o', '--output', required=True)
+    parser.add_argument('--labels')
+    parser.add_argument('--title', default='')
+    args = parser.parse_args()
+    labels = args.labels.split(',') if args.labels else [os.path.basename(r.rstrip('/')) for r in args.runs]
+
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4))
+    for run, label in zip(args.runs, labels):
+        s = load(run)
+        t = s['time']
+        line, = axes[0].plot(t, s['energy'], label=f'{label}: F')
+        if len(args.runs) == 1:
+            for term in ('bending_energy', 'gradient_energy', 'well_energy', 'gaussian_energy'):
+                axes[0].plot(t, s[term], '--', lw=1, label=term.replace('_energy', ''))
+        axes[1].semilogy(t[1:], np.abs(s['area_drift'][1:]) + 1e-17, color=line.get_color(), label=f'{label}: area')
+        axes[1].semilogy(t[1:], np.abs(s['mass_drift'][1:]) + 1e-17, ':', color=line.get_color(),
+                         label=f'{label}: integral phi ds')
+        axes[2].plot(t, s['bud_height'], color=line.get_color(), label=f'{label}: bud height')
+        axes[2].plot(t, s['domain_protrusion'], '--', color=line.get_color(), label=f'{label}: domain protrusion')
+        axes[2].plot(t, s['neck_radius'], ':', color=line.get_color(), label=f'{label}: neck radius')
+    axes[0].set(xlabel='t', ylabel='free energy', title='energy')
+    axes[1].set(xlabel='t', ylabel='|relative drift|', title='conservation')
+    axes[2].set(xlabel='t', title='bud observables')
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    if args.title:
+        fig.suptitle(args.title)
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=80)
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Runs every experiment of the paper (experiments/7*.prm, plus 7.4 C at sigma = 1000)
+# at full length into results/, then regenerates docs/experiments.md and its pictures.
+# About 15 minutes on 2 cores. Usage: scripts/run_experiments.sh [membrane-flow]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+exe=${1:-build/membrane-flow}
+for f in experiments/7*.prm; do
+  echo "running $f"
+  "$exe" --quiet "$f" | tail -n 3
+done
+"$exe" --quiet --set "Material/Line tension=1000" --set "Output/Directory=results/7.4C-sigma1000" \
+  experiments/7.4C-sigma630.prm | tail -n 3
+/usr/bin/python3 scripts/make_experiment_docs.py results docs
