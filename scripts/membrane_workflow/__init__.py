@@ -1,0 +1,1 @@
+"""Science workflow around membrane-flow: budding time, sweeps, critical values."""

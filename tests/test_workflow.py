@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""Tests of the science workflow (scripts/membrane_workflow): the budding-time definition
+on synthetic statistics with a known answer, bisection on a cheap outcome function, and
+the resume semantics of a sweep that is killed and started again.
+Usage: test_workflow.py [membrane-flow] [small.prm]   (the sweep test needs both)"""
+import csv
+import json
+import math
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, '..', 'scripts'))
+from membrane_workflow.budding_time import budding_time  # noqa: E402
+from membrane_workflow.critical import bisect  # noqa: E402
+
+EXE = sys.argv[1] if len(sys.argv) > 1 else None
+SMALL = sys.argv[2] if len(sys.argv) > 2 else None
+
+
+class BuddingTime(unittest.TestCase):
+    def test_exponential_relaxation(self):
+        # F = 10 + 5 exp(-t/0.3): the relative rate (50/3) e / (10 + 5 e), e = exp(-t/0.3),
+        # reaches 1e-3 at e = 0.01 / (50/3 - 0.005), t = 0.3 ln(1666.17) = 2.2259.
+        t = np.linspace(0, 5, 5001)
+        expected = -0.3 * math.log(0.01 / (50 / 3 - 0.005))
+        self.assertAlmostEqual(budding_time(t, 10 + 5 * np.exp(-t / 0.3)), expected, delta=2e-3)
+
+    def test_two_stages(self):
+        # Fast sorting (large drop) then slow budding (small drop): T_min is set by the slow
+        # stage alone, (2/2) e^(-t/2) = 1e-3 (10 + 2 e^(-t/2)), t = 2 ln(100 - 0.2) = 9.2063.
+        t = np.linspace(0, 20, 20001)
+        F = 10 + 50 * np.exp(-t / 0.05) + 2 * np.exp(-t / 2.0)
+        self.assertAlmostEqual(budding_time(t, F), 2 * math.log(100 - 0.2), delta=2e-3)
+
+    def test_pinch_off_is_the_stop_time(self):
+        t = np.linspace(0, 0.7, 50)
+        self.assertEqual(budding_time(t, 5 - t, 'pinch-off approach: neck radius 0.02 < 0.03'), 0.7)
+
+    def test_no_plateau_gives_none(self):
+        t = np.linspace(0, 1, 100)
+        self.assertIsNone(budding_time(t, 10 - t))
+
+
+class Bisection(unittest.TestCase):
+    def test_finds_threshold(self):
+        threshold = 0.3712
+        result = bisect(lambda x: 'complete' if x > threshold else 'incomplete', 0.0, 1.0, 1e-3)
+        low, high = result['bracket']
+        self.assertTrue(low <= threshold < high)
+        self.assertLessEqual(high - low, 1e-3)
+        self.assertEqual(len(result['runs']), 2 + math.ceil(math.log2(1.0 / 1e-3)))
+        self.assertEqual(result['outcomes'], ['incomplete', 'complete'])
+
+    def test_geometric(self):
+        result = bisect(lambda x: x > 777.0, 100.0, 10000.0, 0.01, geometric=True)
+        low, high = result['bracket']
+        self.assertTrue(low <= 777.0 < high)
+        self.assertLessEqual(math.log(high / low), 0.01)
+
+    def test_no_change_is_an_error(self):
+        with self.assertRaisesRegex(ValueError, 'no change of outcome'):
+            bisect(lambda x: 'flat', 1.0, 2.0, 0.1)
+
+
+@unittest.skipIf(EXE is None, 'needs the membrane-flow executable and small.prm')
+class SweepResume(unittest.TestCase):
+    def test_killed_sweep_resumes_without_duplicates(self):
+        with tempfile.TemporaryDirectory() as root:
+            spec = {'base': os.path.abspath(SMALL), 'output': 'out',
+                    'set': {'Time stepping/Maximum steps': 25, 'Time stepping/End time': 1,
+                            'Output/Write VTU': 'false'},
+                    'vary': {'Initial phase/Seed': {'range': [1, 4]}}}
+            sweep_file = os.path.join(root, 'sweep.json')
+            with open(sweep_file, 'w') as f:
+                json.dump(spec, f)
+            command = ['/usr/bin/python3', os.path.join(HERE, '..', 'scripts', 'sweep.py'), sweep_file,
+                       '--exe', os.path.abspath(EXE), '--workers', '1']
+            cases = os.path.join(root, 'out', 'cases')
+
+            def finished():
+                if not os.path.isdir(cases):
+                    return []
+                return sorted(c for c in os.listdir(cases) if os.path.exists(os.path.join(cases, c, 'summary.json')))
+
+            process = subprocess.Popen(command, start_new_session=True, stdout=subprocess.DEVNULL)
+            deadline = time.time() + 120
+            while len(finished()) < 1 and time.time() < deadline:
+                time.sleep(0.05)
+            time.sleep(0.3)  # let the next case start
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+            done_before = finished()
+            self.assertGreaterEqual(len(done_before), 1)
+            self.assertLess(len(done_before), 4, 'the sweep finished before it could be killed')
+            stamps = {c: os.path.getmtime(os.path.join(cases, c, 'summary.json')) for c in done_before}
+
+            output = subprocess.run(command, check=True, capture_output=True, text=True).stdout
+            self.assertIn(f'{len(done_before)} already finished', output)
+            self.assertEqual(len(finished()), 4)
+            for c, stamp in stamps.items():  # finished cases were not run again
+                self.assertEqual(os.path.getmtime(os.path.join(cases, c, 'summary.json')), stamp)
+            with open(os.path.join(root, 'out', 'results.csv')) as f:
+                rows = list(csv.DictReader(f))
+            self.assertEqual(sorted(r['case'] for r in rows), finished())
+            self.assertEqual(sorted(int(r['Initial phase/Seed']) for r in rows), [1, 2, 3, 4])
+            for r in rows:
+                self.assertEqual(r['failed'], 'False')
+
+
+if __name__ == '__main__':
+    unittest.main(argv=sys.argv[:1], verbosity=2)
