@@ -31,18 +31,31 @@ class BuddingTime(unittest.TestCase):
         # reaches 1e-3 at e = 0.01 / (50/3 - 0.005), t = 0.3 ln(1666.17) = 2.2259.
         t = np.linspace(0, 5, 5001)
         expected = -0.3 * math.log(0.01 / (50 / 3 - 0.005))
-        self.assertAlmostEqual(budding_time(t, 10 + 5 * np.exp(-t / 0.3)), expected, delta=2e-3)
+        self.assertAlmostEqual(budding_time(t, 10 + 5 * np.exp(-t / 0.3), rate=1e-3, window=1e-3), expected, delta=2e-3)
 
     def test_two_stages(self):
         # Fast sorting (large drop) then slow budding (small drop): T_min is set by the slow
         # stage alone, (2/2) e^(-t/2) = 1e-3 (10 + 2 e^(-t/2)), t = 2 ln(100 - 0.2) = 9.2063.
         t = np.linspace(0, 20, 20001)
         F = 10 + 50 * np.exp(-t / 0.05) + 2 * np.exp(-t / 2.0)
-        self.assertAlmostEqual(budding_time(t, F), 2 * math.log(100 - 0.2), delta=2e-3)
+        self.assertAlmostEqual(budding_time(t, F, rate=1e-3, window=1e-3), 2 * math.log(100 - 0.2), delta=2e-3)
+
+    def test_complete_bud_is_the_protrusion_crossing(self):
+        # The domain protrusion 0.5 + 0.6 (1 - exp(-t)) reaches 0.95 at t = ln 4.
+        t = np.linspace(0, 5, 501)
+        T = budding_time(t, 10 + np.exp(-t), protrusion=0.5 + 0.6 * (1 - np.exp(-t)))
+        self.assertAlmostEqual(T, math.log(4), delta=1e-4)
 
     def test_pinch_off_is_the_stop_time(self):
         t = np.linspace(0, 0.7, 50)
         self.assertEqual(budding_time(t, 5 - t, 'pinch-off approach: neck radius 0.02 < 0.03'), 0.7)
+
+    def test_window_averages_noise(self):
+        # A plateau with alternating single-step jitter of 1e-4: the window sees the plateau.
+        t = np.linspace(0, 3, 3001)
+        F = 10 + 5 * np.exp(-t / 0.1) + 1e-4 * (-1) ** np.arange(len(t))
+        self.assertIsNone(budding_time(t, F, rate=1e-2, window=1e-3))
+        self.assertLess(budding_time(t, F, rate=1e-2, window=0.1), 1.0)
 
     def test_no_plateau_gives_none(self):
         t = np.linspace(0, 1, 100)
