@@ -14,8 +14,9 @@ A sweep file (JSON) names a base input file and the parameters to vary:
       }
     }
 
-Each case runs in <output>/cases/<id>, where <id> is derived from its parameter values
-alone, so a case is the same directory in every run of the sweep. A case is finished when
+Each case runs in <output>/cases/<id>, where <id> is derived from all its parameter values
+(the fixed "set" ones included), so a case is the same directory in every run of the sweep,
+and changing a fixed value never reuses a stale case. A case is finished when
 its summary.json exists; its case.json records the values. Started again, a sweep skips
 finished cases and reruns (from scratch) cases that were interrupted. results.csv is rebuilt
 from the finished case directories after every case, written atomically, so it never holds
@@ -102,7 +103,7 @@ class Sweep:
         return sweep, cases
 
     def case_dir(self, values):
-        return os.path.join(self.output, 'cases', case_id(values))
+        return os.path.join(self.output, 'cases', case_id({**self.fixed, **values}))
 
     def is_finished(self, values):
         return os.path.exists(os.path.join(self.case_dir(values), 'summary.json'))
@@ -122,7 +123,8 @@ class Sweep:
             return values, 'skipped'
         shutil.rmtree(directory, ignore_errors=True)  # an interrupted attempt starts over
         os.makedirs(directory)
-        write_atomically(os.path.join(directory, 'case.json'), json.dumps(values, indent=1) + '\n')
+        write_atomically(os.path.join(directory, 'case.json'),
+                         json.dumps({'vary': values, 'set': self.fixed}, indent=1) + '\n')
         with open(os.path.join(directory, 'log.txt'), 'w') as log:
             result = subprocess.run(self.command(values, directory), stdout=log, stderr=subprocess.STDOUT)
         if not self.is_finished(values):
@@ -137,7 +139,7 @@ class Sweep:
             futures = [pool.submit(self.run_case, c) for c in todo]
             for future in as_completed(futures):
                 values, status = future.result()
-                progress(f'{case_id(values)} {values}: {status}')
+                progress(f'{os.path.basename(self.case_dir(values))} {values}: {status}')
                 self.write_table()
         return self.write_table()
 
@@ -149,7 +151,7 @@ class Sweep:
             if not os.path.exists(os.path.join(directory, 'summary.json')):
                 continue
             with open(os.path.join(directory, 'case.json')) as f:
-                values = json.load(f)
+                values = json.load(f)['vary']
             summary = load_summary(directory)
             row = {'case': name, **values}
             row.update({c: summary.get(c) for c in SUMMARY_COLUMNS})

@@ -1,0 +1,84 @@
+#!/usr/bin/python3
+"""Render the gallery docs/gallery.md: one picture per figure of the paper (Figs. 7.1-7.4),
+made from the runs of scripts/run_experiments.sh in results/. Each panel is a snapshot of a
+run coloured by phi; energy panels come from the statistics.
+
+Usage: make_gallery.py [results-dir] [docs-dir]"""
+import os
+import sys
+
+import matplotlib
+matplotlib.use('Agg')
+import matplotlib.pyplot as plt
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from membrane_workflow.statistics import load_statistics  # noqa: E402
+from render_surface import draw, read_vtu, save_atomically  # noqa: E402
+
+results = sys.argv[1] if len(sys.argv) > 1 else 'results'
+docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
+images = os.path.join(docs, 'images', 'gallery')
+os.makedirs(images, exist_ok=True)
+
+# figure id, caption, panels: (run, time or None for the last snapshot, title, elevation);
+# ('energy', [runs]) draws the energy curves of runs.
+FIGURES = [
+    ('7.1', 'Sorting on a slightly curved patch: the disordered mixture (A) separates into domains of the '
+     'minority phase A (red) that bulge out (B, C); the energy decays (D).',
+     [('7.1-sorting-patch', 0.0, 'A: t = 0', 35), ('7.1-sorting-patch', 0.2, 'B: t = 0.2', 35),
+      ('7.1-sorting-patch', None, 'C: end', 35), ('energy', ['7.1-sorting-patch'])]),
+    ('7.2', 'Linear (A) and tanh (B) laws kappa(phi), kappa(-1) = 3, kappa(1) = 1, from the same initial '
+     'mixture: different patterns and energy curves (C).',
+     [('7.2-kappa-linear', None, 'A: linear, end', 35), ('7.2-kappa-tanh', None, 'B: tanh, end', 35),
+      ('energy', ['7.2-kappa-linear', '7.2-kappa-tanh'])]),
+    ('7.3', 'A bud grows from the centred phase-A domain (sigma = 90): t = 0 (A), 0.2 (B), 3.1 (C).',
+     [('7.3-budding', 0.0, 'A: t = 0', 20), ('7.3-budding', 0.2, 'B: t = 0.2', 20),
+      ('7.3-budding', None, 'C: t = 3.1', 20)]),
+    ('7.4', 'Line tension and domain size: sigma = 90 (A), 540 (B), 630 (C), 1000 (C\', above the critical '
+     'value of this discretization), the smaller domain at 630 (D), and H0_A = +5 budding to the other side (E).',
+     [('7.4A-sigma90', None, 'A: sigma 90', 15), ('7.4B-sigma540', None, 'B: sigma 540', 15),
+      ('7.4C-sigma630', None, 'C: sigma 630', 15), ('7.4C-sigma1000', None, "C': sigma 1000", 10),
+      ('7.4D-small-domain', None, 'D: small domain', 15), ('7.4E-opposite-side', None, 'E: H0_A = +5', 10)]),
+]
+
+lines = ['# Gallery: the paper\'s figures 7.1-7.4\n',
+         'Each picture is made from the full runs of the experiments (`experiments/`, see',
+         '[experiments.md](experiments.md)); red is phase A (phi = +1), blue phase B. To regenerate all:\n',
+         '```sh\nscripts/run_experiments.sh            # the runs, into results/ (~15 min)',
+         'scripts/make_gallery.py results docs   # this page\n```\n']
+for figure, caption, panels in FIGURES:
+    runs = sorted({p[0] for p in panels if p[0] != 'energy'} |
+                  {r for p in panels if p[0] == 'energy' for r in p[1]})
+    if not all(os.path.exists(os.path.join(results, r, 'surface.pvd')) for r in runs):
+        print(f'skipping Fig. {figure}: missing runs in {results}')
+        continue
+    columns = min(len(panels), 3)
+    rows = (len(panels) + columns - 1) // columns
+    fig = plt.figure(figsize=(4.2 * columns, 3.6 * rows), dpi=90)
+    for k, panel in enumerate(panels):
+        if panel[0] == 'energy':
+            ax = fig.add_subplot(rows, columns, k + 1)
+            for run in panel[1]:
+                s = load_statistics(os.path.join(results, run))
+                ax.plot(s['time'], s['energy'], label=run)
+            ax.set(xlabel='t', ylabel='free energy F', title=f'{chr(65 + k)}: energy')
+            ax.set_yscale('log')
+            ax.legend(fontsize=7)
+            ax.grid(alpha=0.3)
+            continue
+        run, time, title, elev = panel
+        ax = fig.add_subplot(rows, columns, k + 1, projection='3d')
+        draw(ax, read_vtu(os.path.join(results, run, 'surface.pvd'), time), 'phi', elev, -60)
+        ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    name = f'fig{figure}.png'
+    save_atomically(fig, os.path.join(images, name))
+    commands = '\n'.join(f'membrane-flow experiments/{r}.prm' if r != '7.4C-sigma1000' else
+                         "membrane-flow --set 'Material/Line tension=1000' --set "
+                         "'Output/Directory=results/7.4C-sigma1000' experiments/7.4C-sigma630.prm" for r in runs)
+    lines += [f'## Fig. {figure}\n', caption + '\n', f'![Fig. {figure}](images/gallery/{name})\n',
+              f'Runs:\n\n```sh\n{commands}\n```\n']
+    print(f'Fig. {figure}: {name}')
+with open(os.path.join(docs, 'gallery.md'), 'w') as f:
+    f.write('\n'.join(lines))

@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""Write docs/studies.md: the paper's parameter studies (Fig. 7.4 F-I) and the critical line
+tension, from the sweeps of experiments/studies/ and the bisection in results/studies/.
+
+Usage (after running the sweeps, see docs/workflow.md): make_study_docs.py [results/studies] [docs]"""
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+studies = sys.argv[1] if len(sys.argv) > 1 else 'results/studies'
+docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
+images = os.path.join(docs, 'images', 'studies')
+os.makedirs(images, exist_ok=True)
+
+STUDIES = [  # sweep name, varied column, paper panel, symbol
+    ('sigma', 'Material/Line tension', 'Fig. 7.4 F', 'sigma'),
+    ('H0A', 'Material/Spontaneous curvature/Phase A value', 'Fig. 7.4 G', 'H0_A'),
+    ('kappaA', 'Material/Bending rigidity/Phase A value', 'Fig. 7.4 H', 'kappa_A'),
+    ('kappaGA', 'Material/Gaussian rigidity/Phase A value', 'Fig. 7.4 I', 'kappa_G^A'),
+]
+
+lines = ['# Parameter studies: budding time and critical line tension\n',
+         'The paper\'s Fig. 7.4 F-I: the budding time `T_min` (definition in [workflow.md](workflow.md)) of',
+         'the 7.3 setup when one parameter varies, in the complete-budding regime. In this discretization',
+         'that regime starts above sigma ~ 630-1000 (see [experiments.md](experiments.md)), so the H0_A, kappa_A',
+         'and kappa_G^A studies use sigma = 1500 instead of the paper\'s value. Runs end at t = 2.5.\n']
+for name, column, panel, symbol in STUDIES:
+    path = os.path.join(studies, name, 'results.csv')
+    if not os.path.exists(path):
+        print(f'skipping {name}: no {path}')
+        continue
+    with open(path) as f:
+        rows = sorted(csv.DictReader(f), key=lambda r: float(r[column]))
+    png = f'tmin-{name}.png'
+    subprocess.run(['/usr/bin/python3', os.path.join(HERE, 'plot_study.py'), path, column, '--logy', '--title',
+                    f'{panel}: T_min vs {symbol}', '-o', os.path.join(images, png)], check=True)
+    lines += [f'## {panel}: T_min against {symbol}\n',
+              f'```sh\nscripts/sweep.py experiments/studies/{name}.json --workers 2\n```\n',
+              f'| {symbol} | outcome | T_min | domain protrusion | neck radius | steps | wall |', '|---|---|---|---|---|---|---|']
+    for r in rows:
+        tmin = f"{float(r['T_min']):.3f}" if r['T_min'] else 'not reached'
+        lines.append(f"| {float(r[column]):g} | {r['outcome']} | {tmin} | {float(r['domain_protrusion']):.2f} | "
+                     f"{float(r['neck_radius']):.3f} | {r['steps']} | {float(r['wall_seconds']):.0f} s |")
+    finite = [(float(r[column]), float(r['T_min'])) for r in rows if r['T_min']]
+    if len(finite) >= 2:
+        (x0, t0), (x1, t1) = finite[0], finite[-1]
+        lines.append(f'\nFrom {symbol} = {x0:g} to {x1:g}, T_min changes from {t0:.3f} to {t1:.3f} '
+                     f'(log-slope {math.log(t1 / t0) / (x1 - x0):.3g} per unit {symbol}).')
+    lines.append(f'\n![{panel}](images/studies/{png})\n')
+
+bisection = os.path.join(studies, 'critical-sigma', 'bisection.json')
+if os.path.exists(bisection):
+    with open(bisection) as f:
+        b = json.load(f)
+    low, high = b['bracket']
+    lines += ['## Critical line tension of the 7.3 setup\n',
+              '```sh\nscripts/critical_value.py experiments/7.3-budding.prm "Material/Line tension" 630 1000 \\\n'
+              '    --tolerance 0.05 --geometric --output results/studies/critical-sigma \\\n'
+              '    --set "Time stepping/End time=2.5" --set "Output/Interval=0.5" --set "Checkpoint/Interval=0"\n```\n',
+              f'The outcome changes from "{b["outcomes"][0]}" to "{b["outcomes"][1]}" between sigma = {low:.4g} and '
+              f'{high:.4g} (paper: between 540 and 630). Every run of the bisection:\n',
+              '| sigma | outcome |', '|---|---|'] + [f'| {x:.4g} | {o} |' for x, o in b['runs']]
+with open(os.path.join(docs, 'studies.md'), 'w') as f:
+    f.write('\n'.join(lines) + '\n')
+print(f"wrote {os.path.join(docs, 'studies.md')}")
