@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Check a finished run directory (statistics.txt and summary.json).
-Usage: check_run.py <dir> [--direction +1|-1] [--max-drift X] [--outcome NAME]
+Usage: check_run.py <dir> [--direction +1|-1] [--max-drift X] [--outcome NAME] [--min-rejected N]
 Always asserts: the run did not fail, and the discrete energy never increases
 from one accepted step to the next (beyond 1e-10 relative)."""
 import argparse
@@ -14,6 +14,7 @@ parser.add_argument("dir")
 parser.add_argument("--direction", type=int)
 parser.add_argument("--max-drift", type=float)
 parser.add_argument("--outcome")
+parser.add_argument("--min-rejected", type=int)
 args = parser.parse_args()
 
 with open(f"{args.dir}/statistics.txt") as f:
@@ -40,6 +41,9 @@ if args.max_drift is not None:
 if args.direction is not None:
     check(summary["bud_direction"] == args.direction,
           f"bud direction {summary['bud_direction']:+g} (expected {args.direction:+d})")
+if args.min_rejected is not None:
+    check(summary["rejected_steps"] >= args.min_rejected,
+          f"{summary['rejected_steps']} rejected steps (at least {args.min_rejected} expected)")
 if args.outcome is not None:
     check(summary["outcome"] == args.outcome, f"outcome '{summary['outcome']}' (expected '{args.outcome}')")
 sys.exit(0 if ok else 1)
