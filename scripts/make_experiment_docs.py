@@ -34,6 +34,9 @@ EXPERIMENTS = [
      '(not in the paper) the 7.4 C setup above the critical sigma of this discretization', 10),
     ('7.4D-small-domain', 'membrane-flow experiments/7.4D-small-domain.prm',
      'the smaller domain does not bud where the larger one (7.4 C) does', 20),
+    ('7.4D-sigma1000', "membrane-flow --set 'Material/Line tension=1000' --set "
+     "'Output/Directory=results/7.4D-sigma1000' experiments/7.4D-small-domain.prm",
+     '(not in the paper) the smaller domain at sigma = 1000, where the larger one (7.4 C\') buds completely', 15),
     ('7.4E-opposite-side', 'membrane-flow experiments/7.4E-opposite-side.prm',
      'the bud forms on the side opposite to the initial bump', 10),
 ]

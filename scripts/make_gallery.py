@@ -36,11 +36,17 @@ FIGURES = [
      [('7.3-budding', 0.0, 'A: t = 0', 20), ('7.3-budding', 0.2, 'B: t = 0.2', 20),
       ('7.3-budding', None, 'C: t = 3.1', 20)]),
     ('7.4', 'Line tension and domain size: sigma = 90 (A), 540 (B), 630 (C), 1000 (C\', above the critical '
-     'value of this discretization), the smaller domain at 630 (D), and H0_A = +5 budding to the other side (E).',
+     'value of this discretization), the smaller domain at 630 (D) and 1000 (D\'), and H0_A = +5 budding to the '
+     'other side (E).',
      [('7.4A-sigma90', None, 'A: sigma 90', 15), ('7.4B-sigma540', None, 'B: sigma 540', 15),
       ('7.4C-sigma630', None, 'C: sigma 630', 15), ('7.4C-sigma1000', None, "C': sigma 1000", 10),
-      ('7.4D-small-domain', None, 'D: small domain', 15), ('7.4E-opposite-side', None, 'E: H0_A = +5', 10)]),
+      ('7.4D-small-domain', None, 'D: small domain', 15), ('7.4D-sigma1000', None, "D': small domain, sigma 1000", 15), ('7.4E-opposite-side', None, 'E: H0_A = +5', 10)]),
 ]
+
+# Runs that are variations of an input file, not files of their own.
+SPECIAL = {f'7.4{x}-sigma1000': "membrane-flow --set 'Material/Line tension=1000' --set "
+           f"'Output/Directory=results/7.4{x}-sigma1000' experiments/{base}.prm"
+           for x, base in (('C', '7.4C-sigma630'), ('D', '7.4D-small-domain'))}
 
 lines = ['# Gallery: the paper\'s figures 7.1-7.4\n',
          'Each picture is made from the full runs of the experiments (`experiments/`, see',
@@ -74,9 +80,7 @@ for figure, caption, panels in FIGURES:
     fig.tight_layout()
     name = f'fig{figure}.png'
     save_atomically(fig, os.path.join(images, name))
-    commands = '\n'.join(f'membrane-flow experiments/{r}.prm' if r != '7.4C-sigma1000' else
-                         "membrane-flow --set 'Material/Line tension=1000' --set "
-                         "'Output/Directory=results/7.4C-sigma1000' experiments/7.4C-sigma630.prm" for r in runs)
+    commands = '\n'.join(SPECIAL.get(r, f'membrane-flow experiments/{r}.prm') for r in runs)
     lines += [f'## Fig. {figure}\n', caption + '\n', f'![Fig. {figure}](images/gallery/{name})\n',
               f'Runs:\n\n```sh\n{commands}\n```\n']
     print(f'Fig. {figure}: {name}')

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs every experiment of the paper (experiments/7*.prm, plus 7.4 C at sigma = 1000)
+# Runs every experiment of the paper (experiments/7*.prm, plus 7.4 C and D at sigma = 1000)
 # at full length into results/, then regenerates docs/experiments.md and its pictures.
 # About 15 minutes on 2 cores. Usage: scripts/run_experiments.sh [membrane-flow]
 set -euo pipefail
@@ -11,4 +11,7 @@ for f in experiments/7*.prm; do
 done
 "$exe" --quiet --set "Material/Line tension=1000" --set "Output/Directory=results/7.4C-sigma1000" \
   experiments/7.4C-sigma630.prm | tail -n 3
+"$exe" --quiet --set "Material/Line tension=1000" --set "Output/Directory=results/7.4D-sigma1000" \
+  experiments/7.4D-small-domain.prm | tail -n 3
 /usr/bin/python3 scripts/make_experiment_docs.py results docs
+/usr/bin/python3 scripts/make_gallery.py results docs
