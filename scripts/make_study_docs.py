@@ -16,11 +16,11 @@ docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
 images = os.path.join(docs, 'images', 'studies')
 os.makedirs(images, exist_ok=True)
 
-STUDIES = [  # sweep name, varied column, paper panel, symbol
-    ('sigma', 'Material/Line tension', 'Fig. 7.4 F', 'sigma'),
-    ('H0A', 'Material/Spontaneous curvature/Phase A value', 'Fig. 7.4 G', 'H0_A'),
-    ('kappaA', 'Material/Bending rigidity/Phase A value', 'Fig. 7.4 H', 'kappa_A'),
-    ('kappaGA', 'Material/Gaussian rigidity/Phase A value', 'Fig. 7.4 I', 'kappa_G^A'),
+STUDIES = [  # sweep name, varied column, paper panel, symbol, sign of dT_min/dparameter in the paper
+    ('sigma', 'Material/Line tension', 'Fig. 7.4 F', 'sigma', -1),
+    ('H0A', 'Material/Spontaneous curvature/Phase A value', 'Fig. 7.4 G', 'H0_A', +1),
+    ('kappaA', 'Material/Bending rigidity/Phase A value', 'Fig. 7.4 H', 'kappa_A', +1),
+    ('kappaGA', 'Material/Gaussian rigidity/Phase A value', 'Fig. 7.4 I', 'kappa_G^A', +1),
 ]
 
 lines = ['# Parameter studies: budding time and critical line tension\n',
@@ -28,7 +28,7 @@ lines = ['# Parameter studies: budding time and critical line tension\n',
          'the 7.3 setup when one parameter varies, in the complete-budding regime. In this discretization',
          'that regime starts above sigma ~ 630-1000 (see [experiments.md](experiments.md)), so the H0_A, kappa_A',
          'and kappa_G^A studies use sigma = 1500 instead of the paper\'s value. Runs end at t = 2.5.\n']
-for name, column, panel, symbol in STUDIES:
+for name, column, panel, symbol, paper_sign in STUDIES:
     path = os.path.join(studies, name, 'results.csv')
     if not os.path.exists(path):
         print(f'skipping {name}: no {path}')
@@ -48,8 +48,14 @@ for name, column, panel, symbol in STUDIES:
     finite = [(float(r[column]), float(r['T_min'])) for r in rows if r['T_min']]
     if len(finite) >= 2:
         (x0, t0), (x1, t1) = finite[0], finite[-1]
+        values = [t for _, t in finite]
+        monotone = all(b < a for a, b in zip(values, values[1:])) or all(b > a for a, b in zip(values, values[1:]))
+        agrees = (t1 - t0) * paper_sign > 0
         lines.append(f'\nFrom {symbol} = {x0:g} to {x1:g}, T_min changes from {t0:.3f} to {t1:.3f} '
-                     f'(log-slope {math.log(t1 / t0) / (x1 - x0):.3g} per unit {symbol}).')
+                     f'(log-slope {math.log(t1 / t0) / (x1 - x0):.3g} per unit {symbol}), '
+                     f'{"monotonically" if monotone else "not monotonically"}. The paper: T_min falls with '
+                     f'{"increasing" if paper_sign < 0 else "decreasing"} {symbol}; '
+                     f'{"the same trend here" if agrees else "the opposite trend here"}.')
     lines.append(f'\n![{panel}](images/studies/{png})\n')
 
 bisection = os.path.join(studies, 'critical-sigma', 'bisection.json')
