@@ -37,6 +37,8 @@ namespace Membrane
     , surface(triangulation, true)
     , cahn_hilliard(triangulation, true)
     , shape_solver(triangulation, true)
+    , step_control({parameters.adaptive, parameters.min_time_step, parameters.max_time_step, parameters.growth_factor},
+                   parameters.time_step)
   {}
 
   Simulator::~Simulator() = default;
@@ -75,7 +77,7 @@ namespace Membrane
     energy             = compute_energy(surface, geometry, phi, parameters.material);
     initial_mass       = integrate(surface, phi);
     initial_area       = surface.area();
-    tau                = parameters.time_step;
+    step_control.set_tau(parameters.time_step);
     cell_quality       = min_corner_sine(surface, geometry.normal);
   }
 
@@ -93,7 +95,7 @@ namespace Membrane
     geometry           = compute_geometry(surface);
     energy             = compute_energy(surface, geometry, phi, parameters.material);
     time               = scalars.at("time");
-    tau                = scalars.at("tau");
+    step_control.set_tau(scalars.at("tau"));
     step               = static_cast<unsigned int>(scalars.at("step"));
     rejected_steps     = static_cast<unsigned int>(scalars.at("rejected_steps"));
     grid_control_skipped = static_cast<unsigned int>(scalars.at("grid_control_skipped"));
@@ -273,7 +275,7 @@ namespace Membrane
     TimerOutput::Scope scope(timer, "checkpoint");
     save_checkpoint(parameters.output_directory + "/checkpoint.txt", surface, phi,
                     {{"time", time},
-                     {"tau", tau},
+                     {"tau", step_control.tau()},
                      {"step", step},
                      {"rejected_steps", rejected_steps},
                      {"grid_control_skipped", grid_control_skipped},
@@ -359,14 +361,13 @@ namespace Membrane
             result.stop_reason = "maximum steps";
             break;
           }
-        const double trial = std::min(tau, parameters.end_time - time);
-        const double energy_before = energy.total();
-        const Rejection why = try_step(trial);
+        const double    trial         = std::min(step_control.tau(), parameters.end_time - time);
+        const double    energy_before = energy.total();
+        const Rejection why           = try_step(trial);
         if (!why.empty())
           {
             ++rejected_steps;
-            tau = 0.5 * trial;
-            if (!parameters.adaptive || tau < parameters.min_time_step)
+            if (!step_control.reject(trial))
               {
                 result.stop_reason = "step failed at t = " + format(time) + ": " + why +
                                      (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>"
@@ -380,17 +381,8 @@ namespace Membrane
         time += trial;
         ++step;
         record_statistics(trial);
-        // An easy step (vertices moved under a fifth of a cell, energy changed
-        // under 1 %) lets tau grow; a hard one (over half a cell) shrinks it.
-        const double h      = 1.0 / parameters.cells_per_side;
         const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
-        if (parameters.adaptive && trial == tau)
-          {
-            if (max_increment < 0.2 * h && change < 1e-2)
-              tau = std::min(parameters.growth_factor * tau, parameters.max_time_step);
-            else if (max_increment > 0.5 * h)
-              tau = std::max(0.7 * tau, parameters.min_time_step);
-          }
+        step_control.accept(trial, max_increment, 1.0 / parameters.cells_per_side, change);
 
         const bool output_due = time >= next_output_time * (1 - 1e-12);
         if (output_due || finished())

@@ -20,6 +20,7 @@
 #include <membrane/physics/energy.h>
 #include <membrane/shape_solver.h>
 #include <membrane/surface/geometry.h>
+#include <membrane/time_step_control.h>
 
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
@@ -86,7 +87,8 @@ namespace Membrane
     Vector             phi, chemical_potential, pressure; ///< ghosted
     BudShape           bud;
 
-    double       time = 0, tau = 0, initial_mass = 0, initial_area = 0, next_output_time = 0;
+    TimeStepController step_control;
+    double       time = 0, initial_mass = 0, initial_area = 0, next_output_time = 0;
     unsigned int step = 0, rejected_steps = 0, solver_iterations = 0, grid_control_skipped = 0;
     /// Observables of the last accepted step, for the statistics.
     double max_increment = 0, remap_correction = 0, cell_quality = 1;

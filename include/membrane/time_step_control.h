@@ -1,0 +1,44 @@
+#pragma once
+// Adaptive choice of tau (docs/model.md, "Time steps"). The simulator proposes a
+// step of length min(tau, time left); the controller then hears whether the step
+// was rejected or accepted and how hard it was:
+//  - rejected: tau <- trial / 2; the run cannot go on if stepping is not adaptive
+//    or tau fell below its minimum;
+//  - accepted at full length: tau grows by the growth factor (up to the maximum)
+//    after an easy step (vertices moved less than 0.2 cells and the energy
+//    changed less than 1 %), shrinks by 0.7 after a hard one (more than half a cell).
+// Steps cut short to land on the end time leave tau unchanged.
+
+namespace Membrane
+{
+  struct TimeStepLimits
+  {
+    bool   adaptive = true;
+    double minimum  = 1e-9;
+    double maximum  = 1e-2;
+    double growth   = 1.25;
+  };
+
+  class TimeStepController
+  {
+  public:
+    TimeStepController(const TimeStepLimits &limits, double initial_tau)
+      : limits(limits)
+      , current(initial_tau)
+    {}
+
+    double tau() const { return current; }
+    void   set_tau(double tau) { current = tau; }
+
+    /// After a rejected trial step; false if the run cannot continue.
+    bool reject(double trial);
+
+    /// After an accepted trial step; `max_increment` is the largest vertex move,
+    /// `cell_size` the reference cell size, `energy_change` |Delta F| / |F|.
+    void accept(double trial, double max_increment, double cell_size, double energy_change);
+
+  private:
+    TimeStepLimits limits;
+    double         current;
+  };
+} // namespace Membrane

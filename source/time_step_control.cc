@@ -1,0 +1,23 @@
+#include <membrane/time_step_control.h>
+
+#include <algorithm>
+
+namespace Membrane
+{
+  bool TimeStepController::reject(const double trial)
+  {
+    current = 0.5 * trial;
+    return limits.adaptive && current >= limits.minimum;
+  }
+
+  void TimeStepController::accept(const double trial, const double max_increment, const double cell_size,
+                                  const double energy_change)
+  {
+    if (!limits.adaptive || trial != current)
+      return;
+    if (max_increment < 0.2 * cell_size && energy_change < 1e-2)
+      current = std::min(limits.growth * current, limits.maximum);
+    else if (max_increment > 0.5 * cell_size)
+      current = std::max(0.7 * current, limits.minimum);
+  }
+} // namespace Membrane

@@ -1,0 +1,46 @@
+// The adaptive step-size rules (include/membrane/time_step_control.h).
+#include <membrane/time_step_control.h>
+
+#include <gtest/gtest.h>
+
+using Membrane::TimeStepController;
+using Membrane::TimeStepLimits;
+
+TEST(TimeSteps, EasyStepsGrowUpToTheMaximum)
+{
+  TimeStepController control(TimeStepLimits{true, 1e-9, 1e-2, 1.25}, 4e-3);
+  control.accept(4e-3, 0.0, 1.0 / 32, 1e-4);
+  EXPECT_DOUBLE_EQ(control.tau(), 5e-3);
+  for (int i = 0; i < 10; ++i)
+    control.accept(control.tau(), 0.0, 1.0 / 32, 1e-4);
+  EXPECT_DOUBLE_EQ(control.tau(), 1e-2);
+}
+
+TEST(TimeSteps, HardOrLargeEnergyChangeStepsDoNotGrow)
+{
+  TimeStepController control(TimeStepLimits{true, 1e-9, 1e-2, 1.25}, 1e-3);
+  control.accept(1e-3, 0.3 / 32, 1.0 / 32, 1e-4); // between 0.2 and 0.5 cells: keep
+  EXPECT_DOUBLE_EQ(control.tau(), 1e-3);
+  control.accept(1e-3, 0.0, 1.0 / 32, 0.05); // energy changed by 5 %: keep
+  EXPECT_DOUBLE_EQ(control.tau(), 1e-3);
+  control.accept(1e-3, 0.6 / 32, 1.0 / 32, 1e-4); // over half a cell: shrink
+  EXPECT_DOUBLE_EQ(control.tau(), 7e-4);
+  control.accept(2e-4, 0.0, 1.0 / 32, 1e-4); // a step cut to the end time: unchanged
+  EXPECT_DOUBLE_EQ(control.tau(), 7e-4);
+}
+
+TEST(TimeSteps, RejectionHalvesAndStopsBelowTheMinimum)
+{
+  TimeStepController control(TimeStepLimits{true, 1e-4, 1e-2, 1.25}, 1e-3);
+  EXPECT_TRUE(control.reject(1e-3));
+  EXPECT_DOUBLE_EQ(control.tau(), 5e-4);
+  EXPECT_TRUE(control.reject(5e-4));
+  EXPECT_TRUE(control.reject(2.5e-4));
+  EXPECT_FALSE(control.reject(1.25e-4)); // 6.25e-5 < 1e-4
+
+  TimeStepController fixed(TimeStepLimits{false, 1e-9, 1e-2, 1.25}, 1e-3);
+  EXPECT_FALSE(fixed.reject(1e-3));
+  fixed.set_tau(1e-3);
+  fixed.accept(1e-3, 0.0, 1.0 / 32, 0.0);
+  EXPECT_DOUBLE_EQ(fixed.tau(), 1e-3);
+}
