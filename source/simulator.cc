@@ -376,6 +376,17 @@ namespace Membrane
                 result.failed = true;
                 break;
               }
+            if (step_control.stalled())
+              {
+                // Steps keep failing at a tiny tau. With a complete bud this is the
+                // approach to pinch-off (the neck is below what the mesh resolves).
+                const bool budded = classify_outcome(bud, parameters.outcome, false) == "complete bud";
+                result.stop_reason = std::string(budded ? "pinch-off approach" : "stalled") + " at t = " +
+                                     format(time) + ": half of the last 20 steps were rejected (last: " + why +
+                                     ") at tau = " + format(step_control.tau()) + ". The last good state is kept";
+                result.failed = !budded;
+                break;
+              }
             continue;
           }
         time += trial;

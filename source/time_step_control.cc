@@ -4,8 +4,27 @@
 
 namespace Membrane
 {
+  namespace
+  {
+    constexpr std::size_t window = 20;
+  }
+
+  void TimeStepController::record(const bool rejected)
+  {
+    recent.push_back(rejected);
+    if (recent.size() > window)
+      recent.pop_front();
+  }
+
+  bool TimeStepController::stalled() const
+  {
+    return recent.size() == window && 2 * std::count(recent.begin(), recent.end(), true) >= long(window) &&
+           current < 1e-3 * limits.maximum;
+  }
+
   bool TimeStepController::reject(const double trial)
   {
+    record(true);
     current = 0.5 * trial;
     return limits.adaptive && current >= limits.minimum;
   }
@@ -13,6 +32,7 @@ namespace Membrane
   void TimeStepController::accept(const double trial, const double max_increment, const double cell_size,
                                   const double energy_change)
   {
+    record(false);
     if (!limits.adaptive || trial != current)
       return;
     if (max_increment < 0.2 * cell_size && energy_change < 1e-2)

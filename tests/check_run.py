@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Check a finished run directory (statistics.txt and summary.json).
-Usage: check_run.py <dir> [--direction +1|-1] [--max-drift X] [--outcome NAME] [--min-rejected N]
+Usage: check_run.py <dir> [--direction +1|-1] [--max-drift X] [--outcome NAME] [--min-rejected N] [--stop-reason REGEX]
 Always asserts: the run did not fail, and the discrete energy never increases
 from one accepted step to the next (beyond 1e-10 relative)."""
 import argparse
@@ -15,6 +15,7 @@ parser.add_argument("--direction", type=int)
 parser.add_argument("--max-drift", type=float)
 parser.add_argument("--outcome")
 parser.add_argument("--min-rejected", type=int)
+parser.add_argument("--stop-reason", help="regular expression the stop reason must match")
 args = parser.parse_args()
 
 with open(f"{args.dir}/statistics.txt") as f:
@@ -44,6 +45,10 @@ if args.direction is not None:
 if args.min_rejected is not None:
     check(summary["rejected_steps"] >= args.min_rejected,
           f"{summary['rejected_steps']} rejected steps (at least {args.min_rejected} expected)")
+if args.stop_reason is not None:
+    import re
+    check(re.search(args.stop_reason, summary["stop_reason"]) is not None,
+          f"stop reason '{summary['stop_reason']}' matches /{args.stop_reason}/")
 if args.outcome is not None:
     check(summary["outcome"] == args.outcome, f"outcome '{summary['outcome']}' (expected '{args.outcome}')")
 sys.exit(0 if ok else 1)

@@ -44,3 +44,27 @@ TEST(TimeSteps, RejectionHalvesAndStopsBelowTheMinimum)
   fixed.accept(1e-3, 0.0, 1.0 / 32, 0.0);
   EXPECT_DOUBLE_EQ(fixed.tau(), 1e-3);
 }
+
+TEST(TimeSteps, StalledWhenHalfOfRecentStepsFailAtTinyTau)
+{
+  TimeStepController control(TimeStepLimits{true, 1e-12, 1e-2, 1.25}, 1e-3);
+  for (int i = 0; i < 10; ++i) // rejections down to tau ~ 1e-6, alternating with hard accepted steps
+    {
+      control.reject(control.tau());
+      EXPECT_FALSE(control.stalled()) << "fewer than 20 attempts so far";
+      control.accept(control.tau(), 1.0, 1.0 / 32, 0.0);
+    }
+  EXPECT_LT(control.tau(), 1e-5);
+  control.reject(control.tau());
+  EXPECT_TRUE(control.stalled());
+
+  // The same rejection pattern at a tau near the maximum is not a stall.
+  TimeStepController large(TimeStepLimits{true, 1e-12, 1e-2, 1.25}, 1e-2);
+  for (int i = 0; i < 11; ++i)
+    {
+      large.reject(large.tau());
+      large.set_tau(1e-2);
+      large.accept(1e-2, 0.0, 1.0 / 32, 0.0);
+    }
+  EXPECT_FALSE(large.stalled());
+}

@@ -8,6 +8,11 @@
 //    after an easy step (vertices moved less than 0.2 cells and the energy
 //    changed less than 1 %), shrinks by 0.7 after a hard one (more than half a cell).
 // Steps cut short to land on the end time leave tau unchanged.
+// The controller is stalled when half of the last 20 attempted steps were rejected
+// and tau is below 1e-3 of its maximum: the solution is approaching a singularity
+// (a pinching neck) that steps of any size cannot pass, and the run should stop.
+
+#include <deque>
 
 namespace Membrane
 {
@@ -37,8 +42,14 @@ namespace Membrane
     /// `cell_size` the reference cell size, `energy_change` |Delta F| / |F|.
     void accept(double trial, double max_increment, double cell_size, double energy_change);
 
+    /// Half of the last 20 attempts rejected at tau < 1e-3 maximum.
+    bool stalled() const;
+
   private:
-    TimeStepLimits limits;
-    double         current;
+    void record(bool rejected);
+
+    TimeStepLimits    limits;
+    double            current;
+    std::deque<bool>  recent; ///< the last attempts, true = rejected
   };
 } // namespace Membrane
