@@ -58,6 +58,26 @@ for name, column, panel, symbol, paper_sign in STUDIES:
                      f'{"the same trend here" if agrees else "the opposite trend here"}.')
     lines.append(f'\n![{panel}](images/studies/{png})\n')
 
+sensitivity = os.path.join(studies, 'sensitivity')
+if os.path.isdir(sensitivity):
+    sys.path.insert(0, HERE)
+    from membrane_workflow.budding_time import budding_time_of_run
+    lines += ['## Sensitivity of T_min to the discretization\n',
+              'The sigma = 1500 case (T_min from the sigma study above) repeated with a finer mesh and a',
+              'smaller cap on tau:\n',
+              '```sh\nmembrane-flow --set "Material/Line tension=1500" --set "Time stepping/End time=2.5" \\\n'
+              '    --set "Mesh/Cells per side=48" --set "Output/Directory=results/studies/sensitivity/n48" '
+              'experiments/7.3-budding.prm\nmembrane-flow ... --set "Time stepping/Maximum time step=2.5e-3" '
+              '--set "Output/Directory=results/studies/sensitivity/tau2.5e-3" experiments/7.3-budding.prm\n```\n',
+              '| variant | T_min | steps |', '|---|---|---|']
+    for variant, label in (('n48', '48 x 48 cells, tau <= 1e-2'), ('tau2.5e-3', '32 x 32 cells, tau <= 2.5e-3')):
+        run = os.path.join(sensitivity, variant)
+        if os.path.exists(os.path.join(run, 'summary.json')):
+            with open(os.path.join(run, 'summary.json')) as f:
+                steps = json.load(f)['steps']
+            lines.append(f'| {label} | {budding_time_of_run(run):.3f} | {steps} |')
+    lines.append('')
+
 bisection = os.path.join(studies, 'critical-sigma', 'bisection.json')
 if os.path.exists(bisection):
     with open(bisection) as f:
