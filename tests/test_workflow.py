@@ -48,7 +48,10 @@ class BuddingTime(unittest.TestCase):
 
     def test_pinch_off_is_the_stop_time(self):
         t = np.linspace(0, 0.7, 50)
-        self.assertEqual(budding_time(t, 5 - t, 'pinch-off approach: neck radius 0.02 < 0.03'), 0.7)
+        stop = 'pinch-off approach: neck radius 0.02 < 0.03'
+        self.assertEqual(budding_time(t, 5 - t, stop), 0.7)
+        # ... unless the domain became a complete bud earlier: then its protrusion crossing counts.
+        self.assertAlmostEqual(budding_time(t, 5 - t, stop, protrusion=t / 0.5), 0.475, delta=1e-12)
 
     def test_window_averages_noise(self):
         # A plateau with alternating single-step jitter of 1e-4: the window sees the plateau.

@@ -1,11 +1,12 @@
 """Budding time T_min: from the start to the numerical beginning of the equilibrium.
 
 Definition (docs/workflow.md):
-- a run that stopped on approach to pinch-off has T_min = its stop time: a complete bud
-  never reaches a resolved equilibrium, and the paper stops just before the blow-up;
 - a run whose domain becomes a complete bud (domain protrusion above `complete`, 0.95 as
   in the simulator's outcome classes) has T_min = the first time the protrusion reaches it
   (interpolated between rows): after that only the neck keeps thinning slowly;
+- otherwise a run that stopped on approach to pinch-off has T_min = its stop time: a
+  complete bud never reaches a resolved equilibrium, and the paper stops just before the
+  blow-up;
 - otherwise T_min is the time from which on the relative energy rate, measured over a
   window of `window` time units, |F(t + window) - F(t)| / (window |F(t)|), stays below
   `rate` (defaults 0.1 and 1e-2 per unit time): the end of the last window in which the
@@ -22,8 +23,6 @@ import numpy as np
 def budding_time(time, energy, stop_reason='', rate=1e-2, window=0.1, protrusion=None, complete=0.95):
     time = np.asarray(time, dtype=float)
     energy = np.asarray(energy, dtype=float)
-    if stop_reason.startswith('pinch-off'):
-        return float(time[-1])
     if protrusion is not None:
         protrusion = np.asarray(protrusion, dtype=float)
         above = np.nonzero(protrusion >= complete)[0]
@@ -33,6 +32,8 @@ def budding_time(time, energy, stop_reason='', rate=1e-2, window=0.1, protrusion
                 return float(time[0])
             s = (complete - protrusion[i - 1]) / (protrusion[i] - protrusion[i - 1])
             return float(time[i - 1] + s * (time[i] - time[i - 1]))
+    if stop_reason.startswith('pinch-off'):
+        return float(time[-1])
     ends = np.searchsorted(time, time + window * (1 - 1e-9))  # first row at or after t + window
     full = np.nonzero(ends < len(time))[0]
     if len(full) == 0:
