@@ -80,7 +80,6 @@ namespace Membrane
   Vector compute_mean_curvature(const Surface &surface, const Vector &normal_ghosted)
   {
     const FieldSpace &vectors = surface.vector_space();
-    const FieldSpace &scalars = surface.scalar_space();
     const FiniteElement<dim, spacedim> &fe = vectors.fe();
 
     // Weak form of lap_s X = Hvec:  (Hvec, psi) = -(grad_s X, grad_s psi).
@@ -98,7 +97,14 @@ namespace Membrane
     assemble_mass_matrix(surface, vectors, mass);
     const Vector curvature_vector = vectors.ghosted_copy(solve_mass_system(vectors, mass, rhs));
 
-    Vector mean_curvature = scalars.make_owned();
+    return nodal_dot_product(surface, curvature_vector, normal_ghosted);
+  }
+
+  Vector nodal_dot_product(const Surface &surface, const Vector &a, const Vector &b)
+  {
+    const FieldSpace &vectors = surface.vector_space();
+    const FieldSpace &scalars = surface.scalar_space();
+    Vector            product = scalars.make_owned();
     for (const auto &cell : vectors.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -108,16 +114,15 @@ namespace Membrane
               const auto dof = scalar_cell->vertex_dof_index(v, 0);
               if (!scalars.owned().is_element(dof))
                 continue;
-              double h = 0;
+              double sum = 0;
               for (unsigned int c = 0; c < spacedim; ++c)
-                h += curvature_vector[cell->vertex_dof_index(v, c)] *
-                     normal_ghosted[cell->vertex_dof_index(v, c)];
-              mean_curvature[dof] = h;
+                sum += a[cell->vertex_dof_index(v, c)] * b[cell->vertex_dof_index(v, c)];
+              product[dof] = sum;
             }
         }
-    mean_curvature.compress(VectorOperation::insert);
-    scalars.constraints().distribute(mean_curvature);
-    return mean_curvature;
+    product.compress(VectorOperation::insert);
+    scalars.constraints().distribute(product);
+    return product;
   }
 
   Vector compute_gauss_curvature(const Surface &surface, const Vector &normal_ghosted)

@@ -107,24 +107,10 @@ namespace Membrane
     const Vector      d           = vectors.ghosted_copy(shift);
 
     // phi_i <- phi(X_i + d_i) ~ phi_i + d_i . g_i
-    Vector remapped = scalars.make_owned();
-    for (const auto &cell : vectors.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const auto scalar_cell = scalars.cell(cell);
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const auto dof = scalar_cell->vertex_dof_index(v, 0);
-              if (!scalars.owned().is_element(dof))
-                continue;
-              double change = 0;
-              for (unsigned int c = 0; c < spacedim; ++c)
-                change += d[cell->vertex_dof_index(v, c)] * gradient[cell->vertex_dof_index(v, c)];
-              remapped[dof] = phi[dof] + change;
-            }
-        }
-    remapped.compress(VectorOperation::insert);
-    scalars.constraints().distribute(remapped);
+    Vector remapped  = nodal_dot_product(surface, d, gradient);
+    Vector phi_owned = scalars.make_owned();
+    phi_owned        = phi;
+    remapped += phi_owned;
 
     Vector displacement = vectors.make_owned();
     displacement        = surface.displacement();

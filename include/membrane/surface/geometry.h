@@ -30,6 +30,10 @@ namespace Membrane
   /// All three, ghosted.
   Geometry compute_geometry(const Surface &surface);
 
+  /// The vertex-wise dot product a_i . b_i of two vector-space fields (ghosted),
+  /// as an owned scalar-space vector with constraints applied.
+  Vector nodal_dot_product(const Surface &surface, const Vector &a_ghosted, const Vector &b_ghosted);
+
   /// Integral of a scalar-space field over the current surface.
   double integrate(const Surface &surface, const Vector &scalar_ghosted);
 } // namespace Membrane
