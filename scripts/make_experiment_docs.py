@@ -10,39 +10,32 @@ import os
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from membrane_workflow.experiment_runs import command  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 results = sys.argv[1] if len(sys.argv) > 1 else 'results'
 docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
 images = os.path.join(docs, 'images', 'experiments')
 os.makedirs(images, exist_ok=True)
 
-# name, command, what the paper reports, camera elevation
+# name, what the paper reports, camera elevation
 EXPERIMENTS = [
-    ('7.1-sorting-patch', 'membrane-flow experiments/7.1-sorting-patch.prm',
-     'the mixture sorts into a single domain of the minority phase, which buds; energy decays', 35),
-    ('7.2-kappa-linear', 'membrane-flow experiments/7.2-kappa-linear.prm',
-     'linear kappa(phi): a sorting pattern different from the tanh law', 35),
-    ('7.2-kappa-tanh', 'membrane-flow experiments/7.2-kappa-tanh.prm',
-     'tanh kappa(phi): a sorting pattern different from the linear law', 35),
-    ('7.3-budding', 'membrane-flow experiments/7.3-budding.prm',
-     'a single bud grows from the centred domain, near equilibrium at t = 3.1', 20),
-    ('7.4A-sigma90', 'membrane-flow experiments/7.4A-sigma90.prm', 'incomplete bud (sigma = 90)', 20),
-    ('7.4B-sigma540', 'membrane-flow experiments/7.4B-sigma540.prm', 'more budded, still incomplete (sigma = 540)', 20),
-    ('7.4C-sigma630', 'membrane-flow experiments/7.4C-sigma630.prm', 'complete bud (sigma = 630)', 15),
-    ('7.4C-sigma1000', "membrane-flow --set 'Material/Line tension=1000' --set "
-     "'Output/Directory=results/7.4C-sigma1000' experiments/7.4C-sigma630.prm",
-     '(not in the paper) the 7.4 C setup above the critical sigma of this discretization', 10),
-    ('7.4D-small-domain', 'membrane-flow experiments/7.4D-small-domain.prm',
-     'the smaller domain does not bud where the larger one (7.4 C) does', 20),
-    ('7.4D-sigma1000', "membrane-flow --set 'Material/Line tension=1000' --set "
-     "'Output/Directory=results/7.4D-sigma1000' experiments/7.4D-small-domain.prm",
-     '(not in the paper) the smaller domain at sigma = 1000, where the larger one (7.4 C\') buds completely', 15),
-    ('7.4E-opposite-side', 'membrane-flow experiments/7.4E-opposite-side.prm',
-     'the bud forms on the side opposite to the initial bump', 10),
+    ('7.1-sorting-patch', 'the mixture sorts into a single domain of the minority phase, which buds; energy decays', 35),
+    ('7.2-kappa-linear', 'linear kappa(phi): a sorting pattern different from the tanh law', 35),
+    ('7.2-kappa-tanh', 'tanh kappa(phi): a sorting pattern different from the linear law', 35),
+    ('7.3-budding', 'a single bud grows from the centred domain, near equilibrium at t = 3.1', 20),
+    ('7.4A-sigma90', 'incomplete bud (sigma = 90)', 20),
+    ('7.4B-sigma540', 'more budded, still incomplete (sigma = 540)', 20),
+    ('7.4C-sigma630', 'complete bud (sigma = 630)', 15),
+    ('7.4C-sigma1000', '(not in the paper) the 7.4 C setup above the critical sigma of this discretization', 10),
+    ('7.4D-small-domain', 'the smaller domain does not bud where the larger one (7.4 C) does', 20),
+    ('7.4D-sigma1000', '(not in the paper) the smaller domain at sigma = 1000, where the larger one (7.4 C\') buds completely', 15),
+    ('7.4E-opposite-side', 'the bud forms on the side opposite to the initial bump', 10),
 ]
 
 rows, sections = [], []
-for name, command, paper, elev in EXPERIMENTS:
+for name, paper, elev in EXPERIMENTS:
     run = os.path.join(results, name)
     summary_path = os.path.join(run, 'summary.json')
     if not os.path.exists(summary_path):
@@ -61,7 +54,7 @@ for name, command, paper, elev in EXPERIMENTS:
                 f"{s['domain_protrusion']:.2f} | {s['area_drift']:.1e} | {s['mass_drift']:.1e} | "
                 f"{s['wall_seconds']:.0f} s |")
     sections.append(f"### {name}\n\nPaper: {paper}. Here: **{s['outcome']}**, stopped by "
-                    f"\"{s['stop_reason']}\".\n\n```sh\n{command}\n```\n\n"
+                    f"\"{s['stop_reason']}\".\n\n```sh\n{command(name)}\n```\n\n"
                     f"![{name} final shape](images/experiments/{shape_png})\n"
                     f"![{name} history](images/experiments/{history_png})\n")
 

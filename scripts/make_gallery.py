@@ -13,6 +13,7 @@ import matplotlib.pyplot as plt
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+from membrane_workflow.experiment_runs import command  # noqa: E402
 from membrane_workflow.statistics import load_statistics  # noqa: E402
 from render_surface import draw, read_vtu, save_atomically  # noqa: E402
 
@@ -42,11 +43,6 @@ FIGURES = [
       ('7.4C-sigma630', None, 'C: sigma 630', 15), ('7.4C-sigma1000', None, "C': sigma 1000", 10),
       ('7.4D-small-domain', None, 'D: small domain', 15), ('7.4D-sigma1000', None, "D': small domain, sigma 1000", 15), ('7.4E-opposite-side', None, 'E: H0_A = +5', 10)]),
 ]
-
-# Runs that are variations of an input file, not files of their own.
-SPECIAL = {f'7.4{x}-sigma1000': "membrane-flow --set 'Material/Line tension=1000' --set "
-           f"'Output/Directory=results/7.4{x}-sigma1000' experiments/{base}.prm"
-           for x, base in (('C', '7.4C-sigma630'), ('D', '7.4D-small-domain'))}
 
 lines = ['# Gallery: the paper\'s figures 7.1-7.4\n',
          'Each picture is made from the full runs of the experiments (`experiments/`, see',
@@ -80,7 +76,7 @@ for figure, caption, panels in FIGURES:
     fig.tight_layout()
     name = f'fig{figure}.png'
     save_atomically(fig, os.path.join(images, name))
-    commands = '\n'.join(SPECIAL.get(r, f'membrane-flow experiments/{r}.prm') for r in runs)
+    commands = '\n'.join(command(r) for r in runs)
     lines += [f'## Fig. {figure}\n', caption + '\n', f'![Fig. {figure}](images/gallery/{name})\n',
               f'Runs:\n\n```sh\n{commands}\n```\n']
     print(f'Fig. {figure}: {name}')
