@@ -120,23 +120,31 @@ namespace Membrane
             << "Increase <Mesh/Cells per side> to at least " << std::ceil(1.0 / (1.25 * xi)) << ".\n";
   }
 
+  Simulator::State Simulator::save_state() const
+  {
+    State state{surface.vector_space().make_owned(), phi, pressure, geometry, energy};
+    state.displacement = surface.displacement();
+    return state;
+  }
+
+  void Simulator::restore_state(const State &state)
+  {
+    surface.set_displacement(state.displacement);
+    phi      = state.phi;
+    pressure = state.pressure;
+    geometry = state.geometry;
+    energy   = state.energy;
+  }
+
   Simulator::Rejection Simulator::try_step(const double tau_trial)
   {
-    const Material &material     = parameters.material;
-    Vector          displacement = surface.vector_space().make_owned();
-    displacement                 = surface.displacement();
-    const Vector      phi_old    = phi;
-    const Vector      pressure_old = pressure;
-    const Geometry    geometry_old = geometry;
-    const EnergyTerms energy_old   = energy;
-    const auto        restore      = [&](const Rejection &why) {
-      surface.set_displacement(displacement);
-      phi      = phi_old;
-      pressure = pressure_old;
-      geometry = geometry_old;
-      energy   = energy_old;
+    const Material &material = parameters.material;
+    const State     before   = save_state();
+    const auto      restore  = [&](const Rejection &why) {
+      restore_state(before);
       return why;
     };
+    grid_move_skipped = false;
 
     Vector phi_new   = surface.scalar_space().make_owned();
     Vector potential = surface.scalar_space().make_owned();
@@ -158,7 +166,7 @@ namespace Membrane
             max_increment = update.increment.linfty_norm();
             if (!std::isfinite(update.increment.l2_norm()) || !std::isfinite(update.pressure.l2_norm()))
               return restore("the shape solve gave non-finite values");
-            Vector moved = displacement;
+            Vector moved = before.displacement;
             moved += update.increment;
             surface.set_displacement(moved);
             pressure = update.pressure;
@@ -178,24 +186,17 @@ namespace Membrane
             // raise the discrete energy (near equilibrium its O(h^2) changes would
             // otherwise stall the energy-based step control at any tau).
             TimerOutput::Scope scope(timer, "grid control");
-            Vector             unmoved = surface.vector_space().make_owned();
-            unmoved                    = surface.displacement();
-            const Vector      phi_lagrangian      = phi;
-            const Geometry    geometry_lagrangian = geometry;
-            const EnergyTerms energy_lagrangian   = energy;
+            const State        lagrangian = save_state();
             const Vector shift = grid_control_displacement(surface, geometry.normal, parameters.grid_control_weight);
             remap_correction   = move_tangentially_and_remap(surface, shift, phi);
             geometry           = compute_geometry(surface);
             energy             = compute_energy(surface, geometry, phi, material);
-            if (!(energy.total() <= energy_lagrangian.total() +
-                                      parameters.energy_tolerance * std::abs(energy_lagrangian.total())))
+            if (!(energy.total() <= lagrangian.energy.total() +
+                                      parameters.energy_tolerance * std::abs(lagrangian.energy.total())))
               {
-                surface.set_displacement(unmoved);
-                phi              = phi_lagrangian;
-                geometry         = geometry_lagrangian;
-                energy           = energy_lagrangian;
-                remap_correction = 0;
-                ++grid_control_skipped;
+                restore_state(lagrangian);
+                remap_correction  = 0;
+                grid_move_skipped = true;
               }
           }
         cell_quality = min_corner_sine(surface, geometry.normal);
@@ -210,8 +211,8 @@ namespace Membrane
     if (parameters.evolve_shape && cell_quality < parameters.min_cell_quality)
       return restore("a cell degenerated (corner sine " + format(cell_quality) + " < " +
                      format(parameters.min_cell_quality) + ")");
-    const double rise = energy.total() - energy_old.total();
-    if (rise > parameters.energy_tolerance * std::max(std::abs(energy_old.total()), 1e-300))
+    const double rise = energy.total() - before.energy.total();
+    if (rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
       return restore("the energy would rise by " + format(rise));
     return {};
   }
@@ -391,6 +392,7 @@ namespace Membrane
           }
         time += trial;
         ++step;
+        grid_control_skipped += grid_move_skipped;
         record_statistics(trial);
         const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
         step_control.accept(trial, max_increment, 1.0 / parameters.cells_per_side, change);

@@ -61,6 +61,17 @@ namespace Membrane
     /// Why a trial step was rejected (empty: accepted).
     using Rejection = std::string;
 
+    /// What a rejected step (or a discarded grid move) restores.
+    struct State
+    {
+      Vector      displacement; ///< owned
+      Vector      phi, pressure; ///< ghosted
+      Geometry    geometry;
+      EnergyTerms energy;
+    };
+    State save_state() const;
+    void  restore_state(const State &state);
+
     void      setup();
     void      set_initial_state();
     void      resume();
@@ -92,6 +103,7 @@ namespace Membrane
     unsigned int step = 0, rejected_steps = 0, solver_iterations = 0, grid_control_skipped = 0;
     /// Observables of the last accepted step, for the statistics.
     double max_increment = 0, remap_correction = 0, cell_quality = 1;
+    bool   grid_move_skipped = false; ///< in the current trial step
 
     Statistics                         stats;
     std::unique_ptr<class FieldOutput> output;
