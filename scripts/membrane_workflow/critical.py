@@ -4,23 +4,53 @@
 classes, e.g. 'incomplete bud' and 'complete bud'); it halves the bracket, keeping
 one end in each class, until it is narrower than `tolerance` (absolute; or relative to
 the midpoint with relative=True, or in log space with geometric=True). It returns the
-final bracket and every evaluation in order. A monotone change is assumed; if the two
-ends agree the search stops with an error naming both outcomes.
+final bracket, the two outcomes, every evaluation in order and whether the tolerance was
+reached within `max_evaluations`. A monotone change is assumed.
+
+Errors (both carry `runs`, the evaluations so far, and `bracket`, the last valid bracket
+or None):
+- NoChange (a ValueError): the two ends give the same outcome;
+- FailedRun: an evaluation gave an outcome in `failed` (default: 'failed'). A failed run
+  has no outcome class, so it never becomes a bracket end: the search stops at once.
 """
 import math
 
 
-def bisect(evaluate, low, high, tolerance, geometric=False, relative=False, max_evaluations=60):
+class BisectionError(ValueError):
+    def __init__(self, message, runs, bracket=None, outcomes=None):
+        super().__init__(message)
+        self.runs, self.bracket, self.outcomes = list(runs), bracket, outcomes
+
+
+class NoChange(BisectionError):
+    pass
+
+
+class FailedRun(BisectionError):
+    def __init__(self, message, runs, value, bracket=None, outcomes=None):
+        super().__init__(message, runs, bracket, outcomes)
+        self.value = value
+
+
+def bisect(evaluate, low, high, tolerance, geometric=False, relative=False, max_evaluations=60, failed=('failed',)):
     runs = []
+    bracket, outcomes = None, None
 
     def run(x):
         outcome = evaluate(x)
         runs.append((x, outcome))
+        if outcome in failed:
+            where = (f'inside the bracket [{bracket[0]:.6g}, {bracket[1]:.6g}]' if bracket
+                     else 'at an end of the interval')
+            raise FailedRun(f'the run at {x:.6g} ({where}) failed: a failed run has no outcome class and cannot '
+                            f'end a bracket', runs, x, bracket, outcomes)
         return outcome
 
     low_outcome, high_outcome = run(low), run(high)
     if low_outcome == high_outcome:
-        raise ValueError(f'no change of outcome in [{low}, {high}]: both ends give "{low_outcome}"')
+        raise NoChange(f'no change of outcome in [{low}, {high}]: both ends give "{low_outcome}"', runs,
+                       outcomes=[low_outcome, high_outcome])
+    bracket, outcomes = [low, high], [low_outcome, high_outcome]
 
     def width(a, b):
         return (b - a) / (0.5 * (a + b)) if relative else (math.log(b / a) if geometric else b - a)
@@ -31,4 +61,6 @@ def bisect(evaluate, low, high, tolerance, geometric=False, relative=False, max_
             low = middle
         else:
             high = middle
-    return {'bracket': [low, high], 'outcomes': [low_outcome, high_outcome], 'runs': runs}
+        bracket = [low, high]
+    return {'bracket': [low, high], 'outcomes': [low_outcome, high_outcome], 'runs': runs,
+            'converged': width(low, high) <= tolerance}
