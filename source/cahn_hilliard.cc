@@ -20,6 +20,7 @@ namespace Membrane
     space.setup(periodic);
     space.reinit_matrix(matrix);
     rhs = space.make_owned();
+    solver.reset(); // the mesh (and so the pattern) changed
   }
 
   void CahnHilliardSolver::assemble(const Surface &surface, const Geometry &geometry, const Material &material,
@@ -90,7 +91,7 @@ namespace Membrane
   }
 
   unsigned int CahnHilliardSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
-                                        const CahnHilliardOptions &options, const LinearSolverOptions &solver,
+                                        const CahnHilliardOptions &options, const LinearSolverOptions &solver_options,
                                         const double tau, const Vector &phi_old, Vector &phi_new,
                                         Vector &chemical_potential, TimerOutput *timer)
   {
@@ -106,7 +107,9 @@ namespace Membrane
       std::optional<TimerOutput::Scope> scope;
       if (timer)
         scope.emplace(*timer, "Cahn-Hilliard solve");
-      iterations = solve_linear_system(matrix, solution, rhs, solver);
+      if (!solver)
+        solver = std::make_unique<LinearSolver>(solver_options);
+      iterations = solver->solve(matrix, solution, rhs);
     }
     space.constraints().distribute(solution);
     const Vector solution_ghosted = space.ghosted_copy(solution);

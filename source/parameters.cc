@@ -108,7 +108,17 @@ namespace Membrane
                         "delta: weight of the residual of the tangential law in the area equation, which removes "
                         "checkerboard modes of the Q1 surface pressure gamma (0: none).");
       prm.declare_entry("Correct area", "true", Patterns::Bool(),
-                        "Restore the initial total area in each step's area equation (removes slow drift).");
+                        "Local area conservation against a reference: each step's area equation targets the "
+                        "reference area of every vertex (set at the start, carried by grid control), so area errors "
+                        "do not accumulate. false: the linearized constraint keeps the current areas (errors drift).");
+      prm.declare_entry("Area projections", "1", Patterns::Integer(0, 5),
+                        "Projections of each step's result back onto the local area constraint (same operator, one "
+                        "back-substitution each); they remove the O(|grad W|^2) error of the linearized constraint "
+                        "within the step. Needs Correct area = true.");
+      prm.declare_entry("Correct mass", "true", Patterns::Bool(),
+                        "Restore integral phi ds after each shape step by a constant shift of phi (reported as "
+                        "shape_mass_correction). phi rides on the vertices, and the local area error left by the "
+                        "pressure stabilization (O(tau) per step) would otherwise change the mass.");
       prm.declare_entry("Grid control weight", "0.1", Patterns::Double(0, 0.5),
                         "w: after each step every vertex moves by w times the tangential part of (mean of its edge "
                         "neighbours - itself), and phi is remapped (the paper's alpha = delta = 0.1; 0: no grid "
@@ -150,6 +160,12 @@ namespace Membrane
                         "direct: MUMPS (robust; default); gmres: GMRES with block-Jacobi ILU.");
       prm.declare_entry("Relative tolerance", "1e-10", Patterns::Double(1e-16, 1), "For Type = gmres.");
       prm.declare_entry("Maximum iterations", "2000", Patterns::Integer(1), "For Type = gmres.");
+      prm.declare_entry("Reuse iterations", "0", Patterns::Integer(0, 100),
+                        "For Type = direct: the LU factors of an earlier step precondition GMRES for the current "
+                        "matrix; the matrix is factorized anew only when GMRES would need more than this many "
+                        "iterations (0: factorize every step). The result is the same to Reuse tolerance.");
+      prm.declare_entry("Reuse tolerance", "1e-12", Patterns::Double(1e-16, 1e-6),
+                        "Relative residual that the GMRES iterations with reused factors must reach.");
       prm.leave_subsection();
 
       prm.enter_subsection("Output");
@@ -243,6 +259,8 @@ namespace Membrane
     evolve_shape                         = prm.get_bool("Evolve shape");
     shape_options.pressure_stabilization = prm.get_double("Pressure stabilization");
     shape_options.correct_area           = prm.get_bool("Correct area");
+    shape_options.area_corrections       = prm.get_integer("Area projections");
+    shape_options.correct_mass           = prm.get_bool("Correct mass");
     grid_control_weight                  = prm.get_double("Grid control weight");
     prm.leave_subsection();
 
@@ -266,6 +284,8 @@ namespace Membrane
     prm.enter_subsection("Linear solver");
     linear_solver.type               = prm.get("Type");
     linear_solver.relative_tolerance = prm.get_double("Relative tolerance");
+    linear_solver.reuse_iterations   = prm.get_integer("Reuse iterations");
+    linear_solver.reuse_tolerance    = prm.get_double("Reuse tolerance");
     linear_solver.max_iterations     = prm.get_integer("Maximum iterations");
     prm.leave_subsection();
 

@@ -34,11 +34,12 @@ namespace Membrane
     space.setup(periodic);
     space.reinit_matrix(matrix);
     rhs = space.make_owned();
+    solver.reset(); // the mesh (and so the pattern) changed
   }
 
   void ShapeSolver::assemble(const Surface &surface, const Geometry &geometry, const Material &material,
-                             const ShapeOptions &options, const double tau, const double reference_area,
-                             const Vector &phi, const Vector &potential)
+                             const ShapeOptions &options, const double tau, const Vector &phi,
+                             const Vector &potential)
   {
     matrix = 0;
     rhs    = 0;
@@ -56,6 +57,11 @@ namespace Membrane
     std::vector<Tensor<1, spacedim>> grad_phi_q(n_q), nu_q(n_q);
     std::vector<Tensor<2, spacedim>> grad_nu_q(n_q);
     std::vector<PointData>           data(n_q);
+    std::vector<unsigned int>        component(n_dofs);
+    std::vector<double>              value(n_dofs);
+    std::vector<Tensor<1, spacedim>> gradient(n_dofs);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      component[i] = space.fe().system_to_component_index(i).first;
     FullMatrix<double>               local_matrix(n_dofs, n_dofs);
     dealii::Vector<double>           local_rhs(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
@@ -63,8 +69,6 @@ namespace Membrane
     const double sigma = material.line_tension, xi2 = std::pow(material.transition_length, 2);
     const double tauL  = tau * material.shape_mobility;
     const double delta = options.pressure_stabilization;
-    const double area_defect =
-      options.correct_area ? (reference_area - surface.area()) / surface.area() : 0.0;
 
     for (const auto &cell : space.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
@@ -124,16 +128,22 @@ namespace Membrane
             {
               const PointData &d  = data[q];
               const double     ds = fe_values.JxW(q);
+              // Q1 system: every shape function is one component's hat function.
               for (unsigned int i = 0; i < n_dofs; ++i)
                 {
-                  const unsigned int         ci    = space.fe().system_to_component_index(i).first;
-                  const double               psi   = fe_values.shape_value(i, q);
-                  const Tensor<1, spacedim> &grad_psi = fe_values.shape_grad(i, q);
+                  value[i]    = fe_values.shape_value(i, q);
+                  gradient[i] = fe_values.shape_grad(i, q);
+                }
+              for (unsigned int i = 0; i < n_dofs; ++i)
+                {
+                  const unsigned int         ci       = component[i];
+                  const double               psi      = value[i] * ds;
+                  const Tensor<1, spacedim>  grad_psi = gradient[i] * ds;
                   for (unsigned int j = 0; j < n_dofs; ++j)
                     {
-                      const unsigned int         cj = space.fe().system_to_component_index(j).first;
-                      const double               v  = fe_values.shape_value(j, q);
-                      const Tensor<1, spacedim> &gv = fe_values.shape_grad(j, q);
+                      const unsigned int         cj = component[j];
+                      const double               v  = value[j];
+                      const Tensor<1, spacedim> &gv = gradient[j];
                       double                     a  = 0;
                       if (ci < spacedim) // curvature row, psi_vec = psi e_ci
                         {
@@ -168,19 +178,19 @@ namespace Membrane
                           else if (cj == pressure_component)
                             a = -tauL * (gv * d.tangent[k]) * psi;
                         }
-                      local_matrix(i, j) += a * ds;
+                      local_matrix(i, j) += a;
                     }
 
                   double b = 0;
                   if (ci < spacedim)
                     b = -grad_psi[ci]; // -(grad_s X^m, grad_s psi_vec)
                   else if (ci == pressure_component)
-                    b = area_defect * psi + delta * tauL * d.Y * (d.grad_phi * grad_psi);
+                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi); // + a_ref - a^m: add_area_defect()
                   else if (ci == curvature_component)
                     b = tauL * (d.flux * grad_psi + d.source * psi);
                   else
                     b = tauL * d.Y * d.d_phi[ci - first_tangent_component] * psi;
-                  local_rhs(i) += b * ds;
+                  local_rhs(i) += b;
                 }
             }
           cell->get_dof_indices(dof_indices);
@@ -190,23 +200,64 @@ namespace Membrane
     rhs.compress(VectorOperation::add);
   }
 
+  void ShapeSolver::add_area_defect(const Surface &surface, const Vector &area_defect)
+  {
+    // Both vectors hold the assembled (condensed) vertex values: constrained rows are
+    // decoupled by the condensation, so their entries do not matter.
+    const FieldSpace &scalars = surface.scalar_space();
+    const Vector      defect  = scalars.ghosted_copy(area_defect);
+    Vector            rows    = space.make_owned();
+    for (const auto &cell : space.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const auto scalar_cell = scalars.cell(cell);
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const auto row = cell->vertex_dof_index(v, pressure_component);
+              if (space.owned().is_element(row) && !space.constraints().is_constrained(row))
+                rows[row] = defect[scalar_cell->vertex_dof_index(v, 0)];
+            }
+        }
+    rows.compress(VectorOperation::insert);
+    rhs += rows;
+  }
+
   ShapeUpdate ShapeSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
-                                const ShapeOptions &options, const LinearSolverOptions &solver, const double tau,
-                                const double reference_area, const Vector &phi, const Vector &potential,
-                                TimerOutput *timer)
+                                const ShapeOptions &options, const LinearSolverOptions &solver_options,
+                                const double tau, const Vector &area_defect, const Vector &phi,
+                                const Vector &potential, TimerOutput *timer)
   {
     {
       std::optional<TimerOutput::Scope> scope;
       if (timer)
         scope.emplace(*timer, "shape assembly");
-      assemble(surface, geometry, material, options, tau, reference_area, phi, potential);
+      assemble(surface, geometry, material, options, tau, phi, potential);
+      add_area_defect(surface, area_defect);
     }
+    if (!solver)
+      solver = std::make_unique<LinearSolver>(solver_options);
+    return solve(surface, timer);
+  }
+
+  ShapeUpdate ShapeSolver::correct_area(const Surface &surface, const Vector &area_defect, TimerOutput *timer)
+  {
+    Assert(solver, ExcMessage("correct_area() needs a step() first"));
+    rhs = 0;
+    add_area_defect(surface, area_defect);
+    return solve(surface, timer, /*same_matrix=*/true);
+  }
+
+  ShapeUpdate ShapeSolver::solve(const Surface &surface, TimerOutput *timer, const bool same_matrix)
+  {
     Vector solution = space.make_owned();
     {
       std::optional<TimerOutput::Scope> scope;
       if (timer)
         scope.emplace(*timer, "shape solve");
-      solve_linear_system(matrix, solution, rhs, solver);
+      if (same_matrix)
+        solver->solve_again(solution, rhs);
+      else
+        solver->solve(matrix, solution, rhs);
     }
     space.constraints().distribute(solution);
     const Vector ghosted = space.ghosted_copy(solution);

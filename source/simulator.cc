@@ -77,6 +77,7 @@ namespace Membrane
     energy             = compute_energy(surface, geometry, phi, parameters.material);
     initial_mass       = integrate(surface, phi);
     initial_area       = surface.area();
+    reference_areas    = vertex_areas(surface);
     step_control.set_tau(parameters.time_step);
     cell_quality       = min_corner_sine(surface, geometry.normal);
   }
@@ -87,8 +88,12 @@ namespace Membrane
     Vector      displacement = surface.vector_space().make_owned();
     Vector      phi_owned    = surface.scalar_space().make_owned();
     std::string statistics_text;
-    const auto  scalars = load_checkpoint(parameters.resume_from, surface, displacement, phi_owned, statistics_text);
+    reference_areas     = surface.scalar_space().make_owned();
+    const auto  scalars = load_checkpoint(parameters.resume_from, surface, displacement, phi_owned, reference_areas,
+                                          statistics_text);
     surface.set_displacement(displacement);
+    if (reference_areas.linfty_norm() == 0) // a checkpoint of format 1
+      reference_areas = vertex_areas(surface);
     phi                = surface.scalar_space().ghosted_copy(phi_owned);
     chemical_potential = surface.scalar_space().make_ghosted();
     pressure           = surface.scalar_space().make_ghosted();
@@ -122,7 +127,7 @@ namespace Membrane
 
   Simulator::State Simulator::save_state() const
   {
-    State state{surface.vector_space().make_owned(), phi, pressure, geometry, energy};
+    State state{surface.vector_space().make_owned(), phi, pressure, reference_areas, geometry, energy};
     state.displacement = surface.displacement();
     return state;
   }
@@ -132,8 +137,121 @@ namespace Membrane
     surface.set_displacement(state.displacement);
     phi      = state.phi;
     pressure = state.pressure;
+    reference_areas = state.reference_areas;
     geometry = state.geometry;
     energy   = state.energy;
+  }
+
+  Vector Simulator::area_defect() const
+  {
+    Vector defect = surface.scalar_space().make_owned();
+    if (parameters.shape_options.correct_area)
+      {
+        defect = reference_areas;
+        defect -= vertex_areas(surface);
+      }
+    return defect;
+  }
+
+  bool Simulator::move_shape(const double tau_trial, const Vector &phi_new)
+  {
+    const ShapeOptions &options = parameters.shape_options;
+    ShapeUpdate update = shape_solver.step(surface, geometry, parameters.material, options, parameters.linear_solver,
+                                           tau_trial, area_defect(), phi, chemical_potential, &timer);
+    Vector moved = surface.vector_space().make_owned();
+    moved        = surface.displacement();
+    const auto apply = [&](const ShapeUpdate &part) {
+      if (!std::isfinite(part.increment.l2_norm()) || !std::isfinite(part.pressure.l2_norm()))
+        return false;
+      moved += part.increment;
+      surface.set_displacement(moved);
+      return true;
+    };
+    if (!apply(update))
+      return false;
+    max_increment = update.increment.linfty_norm();
+    Vector gamma  = update.pressure;
+    // The linearized constraint leaves an O(|grad W|^2) area error in every step.
+    // Projecting it out within the step (same operator, one back-substitution)
+    // keeps it from being corrected by the next step, whatever its tau.
+    area_projections = 0;
+    if (options.correct_area)
+      {
+        TimerOutput::Scope scope(timer, "area projection");
+        for (unsigned int k = 0; k < options.area_corrections; ++k)
+          {
+            const Vector defect = area_defect();
+            Vector       areas  = reference_areas;
+            areas -= defect;
+            if (max_relative_difference(areas, reference_areas) <= options.area_tolerance)
+              break;
+            const ShapeUpdate correction = shape_solver.correct_area(surface, defect, &timer);
+            if (!apply(correction))
+              return false;
+            gamma += correction.pressure;
+            ++area_projections;
+          }
+      }
+    pressure = gamma;
+    // phi~ rides on the vertices (Lagrangian), so integral phi ds = sum phi_i a_i
+    // changes with the vertex areas. The pressure stabilization leaves a local area
+    // error of O(tau) per step (the residual of the tangential law in the area row)
+    // that correlates with grad phi and so adds up; a constant restores the mass.
+    phi = phi_new;
+    if (options.correct_mass)
+      {
+        Vector       corrected = phi_new;
+        const double mass      = integrate(surface, phi);
+        shape_mass_correction  = (initial_mass - mass) / surface.area();
+        corrected.add(shape_mass_correction);
+        surface.scalar_space().constraints().distribute(corrected);
+        phi = corrected;
+      }
+    return true;
+  }
+
+  void Simulator::control_grid(const double energy_before)
+  {
+    const Material &material = parameters.material;
+    const auto      update_geometry = [&]() {
+      TimerOutput::Scope scope(timer, "geometry");
+      geometry = compute_geometry(surface);
+      energy   = compute_energy(surface, geometry, phi, material);
+    };
+    if (!(parameters.evolve_shape && parameters.grid_control_weight > 0))
+      return update_geometry();
+
+    // Grid control re-parametrizes the Lagrangian surface X~. The moved state is
+    // kept when the step as a whole does not raise the energy; only otherwise is the
+    // geometry of X~ itself needed (near equilibrium the move's O(h^2) energy change
+    // would stall the energy-based step control at any tau).
+    const State lagrangian = save_state();
+    {
+      TimerOutput::Scope scope(timer, "grid control");
+      const Vector normal = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
+      const Vector shift  = grid_control_displacement(surface, normal, parameters.grid_control_weight);
+      const Vector areas_before = vertex_areas(surface);
+      remap_correction = move_tangentially_and_remap(surface, shift, phi);
+      // The reference area moves with the vertices, each keeping its relative error;
+      // the total reference area is kept exactly.
+      Vector carried = vertex_areas(surface);
+      for (const auto i : carried.locally_owned_elements())
+        if (areas_before[i] > 0)
+          carried[i] = carried[i] * (reference_areas[i] / areas_before[i]);
+      carried.compress(VectorOperation::insert);
+      const double total = carried.mean_value() * carried.size();
+      if (total > 0)
+        carried *= initial_area / total;
+      reference_areas = carried;
+    }
+    update_geometry();
+    if (std::isfinite(energy.total()) &&
+        energy.total() <= energy_before + parameters.energy_tolerance * std::abs(energy_before))
+      return;
+    restore_state(lagrangian);
+    remap_correction  = 0;
+    grid_move_skipped = true;
+    update_geometry();
   }
 
   Simulator::Rejection Simulator::try_step(const double tau_trial)
@@ -160,45 +278,12 @@ namespace Membrane
         remap_correction = 0;
         if (parameters.evolve_shape)
           {
-            const ShapeUpdate update =
-              shape_solver.step(surface, geometry, material, parameters.shape_options, parameters.linear_solver,
-                                tau_trial, initial_area, phi, chemical_potential, &timer);
-            max_increment = update.increment.linfty_norm();
-            if (!std::isfinite(update.increment.l2_norm()) || !std::isfinite(update.pressure.l2_norm()))
+            if (!move_shape(tau_trial, phi_new))
               return restore("the shape solve gave non-finite values");
-            Vector moved = before.displacement;
-            moved += update.increment;
-            surface.set_displacement(moved);
-            pressure = update.pressure;
-            phi      = phi_new; // phi~ rides on the vertices (Lagrangian)
           }
         else
           phi = phi_new;
-
-        {
-          TimerOutput::Scope scope(timer, "geometry");
-          geometry = compute_geometry(surface);
-        }
-        energy = compute_energy(surface, geometry, phi, material);
-        if (parameters.evolve_shape && parameters.grid_control_weight > 0 && std::isfinite(energy.total()))
-          {
-            // Grid control re-parametrizes the surface; it is kept only if it does not
-            // raise the discrete energy (near equilibrium its O(h^2) changes would
-            // otherwise stall the energy-based step control at any tau).
-            TimerOutput::Scope scope(timer, "grid control");
-            const State        lagrangian = save_state();
-            const Vector shift = grid_control_displacement(surface, geometry.normal, parameters.grid_control_weight);
-            remap_correction   = move_tangentially_and_remap(surface, shift, phi);
-            geometry           = compute_geometry(surface);
-            energy             = compute_energy(surface, geometry, phi, material);
-            if (!(energy.total() <= lagrangian.energy.total() +
-                                      parameters.energy_tolerance * std::abs(lagrangian.energy.total())))
-              {
-                restore_state(lagrangian);
-                remap_correction  = 0;
-                grid_move_skipped = true;
-              }
-          }
+        control_grid(before.energy.total());
         cell_quality = min_corner_sine(surface, geometry.normal);
       }
     catch (const std::exception &)
@@ -222,6 +307,7 @@ namespace Membrane
     TimerOutput::Scope scope(timer, "statistics");
     const double area = surface.area();
     const double mass = integrate(surface, phi);
+    area_error        = max_relative_difference(vertex_areas(surface), reference_areas);
     bud               = measure_bud(surface, phi);
     stats.set("step", step);
     stats.set("time", time);
@@ -253,6 +339,9 @@ namespace Membrane
     stats.set("min_corner_sine", cell_quality);
     stats.set("rejected_steps", rejected_steps);
     stats.set("grid_control_skipped", grid_control_skipped);
+    stats.set("area_error", area_error);
+    stats.set("shape_mass_correction", shape_mass_correction);
+    stats.set("area_projections", area_projections);
     stats.set("solver_iterations", solver_iterations);
     stats.set("wall_seconds", wall.wall_time());
     stats.end_row();
@@ -274,7 +363,7 @@ namespace Membrane
   void Simulator::write_checkpoint() const
   {
     TimerOutput::Scope scope(timer, "checkpoint");
-    save_checkpoint(parameters.output_directory + "/checkpoint.txt", surface, phi,
+    save_checkpoint(parameters.output_directory + "/checkpoint.txt", surface, phi, reference_areas,
                     {{"time", time},
                      {"tau", step_control.tau()},
                      {"step", step},
@@ -311,10 +400,11 @@ namespace Membrane
         << "  \"stop_reason\": \"" << result.stop_reason << "\",\n  \"failed\": " << (result.failed ? "true" : "false")
         << ",\n  \"outcome\": \"" << result.outcome << "\",\n  \"steps\": " << step
         << ",\n  \"rejected_steps\": " << rejected_steps << ",\n  \"time\": " << time
-        << ",\n  \"wall_seconds\": " << wall_seconds;
+        << ",\n  \"wall_seconds\": " << wall_seconds << ",\n  \"grid_control_refused_fraction\": "
+        << (step > 0 ? double(grid_control_skipped) / step : 0.0);
     for (const char *c : {"energy", "bending_energy", "gaussian_energy", "gradient_energy", "well_energy", "area",
                           "area_drift", "mass", "mass_drift", "bud_height", "neck_radius", "bud_radius", "neck_ratio",
-                          "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine"})
+                          "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error"})
       out << ",\n  \"" << c << "\": " << stats.last(c);
     out << "\n}\n";
     write_file_atomically(parameters.output_directory + "/summary.json", out.str());

@@ -17,6 +17,7 @@
 
 #include <deal.II/base/timer.h>
 
+#include <memory>
 #include <string>
 
 namespace Membrane
@@ -44,9 +45,10 @@ namespace Membrane
     void assemble(const Surface &surface, const Geometry &geometry, const Material &material,
                   const CahnHilliardOptions &options, double tau, const Vector &phi_old);
 
-    const bool   periodic;
-    FieldSpace   space; ///< component 0: phi, component 1: Y
-    SparseMatrix matrix;
-    Vector       rhs;
+    const bool                    periodic;
+    FieldSpace                    space; ///< component 0: phi, component 1: Y
+    SparseMatrix                  matrix;
+    Vector                        rhs;
+    std::unique_ptr<LinearSolver> solver; ///< kept across steps: the ordering is reused
   };
 } // namespace Membrane

@@ -13,7 +13,7 @@
 //                          + (-kappa (H - H0) |grad nu|^2 - sigma xi^2 b^ij d_i phi d_j phi + H G, psi) ]
 //   tangential: (W.a_k, psi) - tau L_X (d_k gamma, psi) = tau L_X (Y d_k phi, psi),   k = 1, 2
 //   area:       (div_s W, psi) + delta [ (W, grad psi) - tau L_X (grad gamma + Y grad phi, grad psi) ]
-//               - epsilon (gamma, psi) = ((A_0 - A^m)/A^m, psi)
+//               - epsilon (gamma, psi) = a_ref(psi) - a^m(psi)
 //   curvature:  (H~ nu + B~_1 t_1 + B~_2 t_2, psi_vec) + (grad_s W, grad_s psi_vec) = -(grad_s X^m, grad_s psi_vec)
 //
 // with everything else (H = H^m, K, nu, phi = phi^m, moduli at phi^m, Y of the
@@ -33,8 +33,14 @@
 //    compact-stencil Laplacian;
 //  - epsilon = 1e-12 only fixes the constant gamma on a flat patch, where H = 0
 //    leaves the global pressure undetermined;
-//  - the right-hand side (A_0 - A^m)/A^m of the area row restores slow second-order
-//    drift of the total area (the paper's global pressure correction).
+//  - local area: a(psi) = integral psi ds is the area carried by each vertex. The
+//    linearized constraint a^{m+1}(psi) ~ a^m(psi) + (div_s W, psi) targets the
+//    reference areas a_ref(psi) of the membrane, not the current ones, so errors
+//    of earlier steps are fed back instead of accumulating;
+//  - the linearization leaves an O(|grad W|^2) error in each step. correct_area()
+//    removes it within the step: the same operator (its factorization is reused)
+//    with the measured defect of X^m + W as the only right-hand side gives a
+//    constrained projection W' that is added to W.
 
 #include <membrane/physics/material.h>
 #include <membrane/solvers/linear_solver.h>
@@ -42,12 +48,17 @@
 
 #include <deal.II/base/timer.h>
 
+#include <memory>
+
 namespace Membrane
 {
   struct ShapeOptions
   {
     double pressure_stabilization = 0.5; ///< delta (0: none)
-    bool   correct_area           = true;
+    bool   correct_area           = true;  ///< feed back the defect of the vertex areas
+    unsigned int area_corrections = 1;     ///< projections per step onto the area constraint
+    double area_tolerance         = 1e-12; ///< no projection below this relative defect
+    bool   correct_mass           = true;  ///< restore integral phi ds after the shape step
   };
 
   /// Result of one shape step; all vectors owned.
@@ -64,20 +75,33 @@ namespace Membrane
     ShapeSolver(const Triangulation &triangulation, bool periodic);
     void setup();
 
-    /// One step; `timer` (optional) gets the sections "shape assembly" and "shape solve".
+    /// One step; `area_defect` (owned, scalar space) is a_ref(psi_i) - a^m(psi_i) per
+    /// vertex (vertex_areas() of the reference minus that of Gamma^m; zero to keep the
+    /// current areas). `timer` (optional) gets "shape assembly" and "shape solve".
     ShapeUpdate step(const Surface &surface, const Geometry &geometry, const Material &material,
                      const ShapeOptions &options, const LinearSolverOptions &solver, double tau,
-                     double reference_area, const Vector &phi_ghosted, const Vector &potential_ghosted,
+                     const Vector &area_defect, const Vector &phi_ghosted, const Vector &potential_ghosted,
                      dealii::TimerOutput *timer = nullptr);
+
+    /// The projection of the last step's result back onto the area constraint: the
+    /// last operator with the defect a_ref - a(X^m + W) as the only right-hand side.
+    /// Its result is added to that of step(); it costs one back-substitution.
+    ShapeUpdate correct_area(const Surface &surface, const Vector &area_defect, dealii::TimerOutput *timer = nullptr);
+
+    /// Numeric factorizations so far (one per step, none for corrections).
+    unsigned int n_factorizations() const { return solver ? solver->n_factorizations() : 0; }
 
   private:
     void assemble(const Surface &surface, const Geometry &geometry, const Material &material,
-                  const ShapeOptions &options, double tau, double reference_area, const Vector &phi,
-                  const Vector &potential);
+                  const ShapeOptions &options, double tau, const Vector &phi, const Vector &potential);
+    /// Add the vertex area defect to the right-hand side of the area equation.
+    void add_area_defect(const Surface &surface, const Vector &area_defect);
+    ShapeUpdate solve(const Surface &surface, dealii::TimerOutput *timer, bool same_matrix = false);
 
-    const bool   periodic;
-    FieldSpace   space; ///< components: W (0-2), gamma (3), H~ (4), B~_1 (5), B~_2 (6)
-    SparseMatrix matrix;
-    Vector       rhs;
+    const bool                    periodic;
+    FieldSpace                    space; ///< components: W (0-2), gamma (3), H~ (4), B~_1 (5), B~_2 (6)
+    SparseMatrix                  matrix;
+    Vector                        rhs;
+    std::unique_ptr<LinearSolver> solver; ///< kept across steps: the ordering is reused
   };
 } // namespace Membrane

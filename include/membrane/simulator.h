@@ -6,10 +6,13 @@
 // One time step m -> m+1 (MODEL.md section 4):
 //   1. Cahn-Hilliard on Gamma^m: phi^m -> (phi~, Y);
 //   2. shape: (X^m, phi^m, Y) -> X~ = X^m + W (ShapeSolver); phi~ rides on the vertices;
-//   3. geometry of Gamma~ and its energy F~;
-//   4. grid control: tangential vertex smoothing with ALE remap of phi~ -> phi^{m+1},
-//      kept if it does not raise the energy above F~ (else X^{m+1} = X~, phi^{m+1} = phi~);
-//   5. cell quality and the energy F^{m+1} of Gamma^{m+1}.
+//      then projections of X~ back onto the local area constraint (same operator);
+//   3. grid control: tangential vertex smoothing with ALE remap of phi~ -> phi^{m+1}
+//      (the reference vertex areas follow the vertices);
+//   4. geometry and energy F^{m+1} of Gamma^{m+1}. If the moved state would raise
+//      the energy above F^m, the move is discarded and X^{m+1} = X~, phi^{m+1} = phi~
+//      (its geometry computed instead); the step descends either way;
+//   5. cell quality of Gamma^{m+1}.
 // With adaptive stepping a step is rejected (state restored, tau halved) when F
 // would rise, a cell would fold or invert, or a solve fails; easy steps let tau grow.
 
@@ -66,6 +69,7 @@ namespace Membrane
     {
       Vector      displacement; ///< owned
       Vector      phi, pressure; ///< ghosted
+      Vector      reference_areas; ///< owned
       Geometry    geometry;
       EnergyTerms energy;
     };
@@ -77,6 +81,12 @@ namespace Membrane
     void      resume();
     void      warn_if_unresolved() const;
     Rejection try_step(double tau);
+    /// Shape step and its area projections; false if a solve gave non-finite values.
+    bool      move_shape(double tau, const Vector &phi_new);
+    /// Grid control of the Lagrangian state X~, kept if F^{m+1} <= F^m.
+    void      control_grid(double energy_before);
+    /// a_ref - a of the current surface (zero if the area is not corrected).
+    Vector    area_defect() const;
     void      record_statistics(double tau);
     void      write_checkpoint() const;
     void      write_run_info() const;
@@ -96,13 +106,18 @@ namespace Membrane
     Geometry           geometry;
     EnergyTerms        energy;
     Vector             phi, chemical_potential, pressure; ///< ghosted
+    /// Reference area a_ref,i of the membrane carried by each vertex (owned,
+    /// assembled): the local area constraint's target. Set at the start; grid
+    /// control carries it with the vertices (keeping each vertex's relative error).
+    Vector             reference_areas;
     BudShape           bud;
 
     TimeStepController step_control;
     double       time = 0, initial_mass = 0, initial_area = 0, next_output_time = 0;
     unsigned int step = 0, rejected_steps = 0, solver_iterations = 0, grid_control_skipped = 0;
     /// Observables of the last accepted step, for the statistics.
-    double max_increment = 0, remap_correction = 0, cell_quality = 1;
+    double max_increment = 0, remap_correction = 0, cell_quality = 1, area_error = 0, shape_mass_correction = 0;
+    unsigned int area_projections = 0;
     bool   grid_move_skipped = false; ///< in the current trial step
 
     Statistics                         stats;

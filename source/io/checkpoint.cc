@@ -14,7 +14,9 @@ namespace Membrane
 
   namespace
   {
-    constexpr const char *magic = "membrane-checkpoint 1";
+    constexpr const char *magic    = "membrane-checkpoint 2";
+    constexpr const char *magic_v1 = "membrane-checkpoint 1";
+    constexpr std::size_t fields = 7; ///< x, y, D (3), phi, reference area
     using Key = std::pair<double, double>;
 
     /// Calls f(reference vertex, vector dofs[3], scalar dof) for every owned,
@@ -41,15 +43,18 @@ namespace Membrane
   } // namespace
 
   void save_checkpoint(const std::string &path, const Surface &surface, const Vector &phi,
-                       const std::map<std::string, double> &scalars, const std::string &statistics_text)
+                       const Vector &reference_areas, const std::map<std::string, double> &scalars,
+                       const std::string &statistics_text)
   {
-    const Vector       &D = surface.displacement();
+    const Vector       &D     = surface.displacement();
+    const Vector        areas = surface.scalar_space().ghosted_copy(reference_areas);
     std::vector<double> local;
     std::set<types::global_dof_index> seen;
     for_each_owned_vertex(surface, [&](const Point<spacedim> &x, const auto &vector_dofs, const auto dof) {
       if (!seen.insert(dof).second)
         return;
-      local.insert(local.end(), {x[0], x[1], D[vector_dofs[0]], D[vector_dofs[1]], D[vector_dofs[2]], phi[dof]});
+      local.insert(local.end(),
+                   {x[0], x[1], D[vector_dofs[0]], D[vector_dofs[1]], D[vector_dofs[2]], phi[dof], areas[dof]});
     });
     const MPI_Comm comm  = surface.scalar_space().communicator();
     const auto     parts = Utilities::MPI::gather(comm, local, 0);
@@ -61,24 +66,26 @@ namespace Membrane
       out << name << ' ' << value << '\n';
     std::size_t n = 0;
     for (const auto &part : parts)
-      n += part.size() / 6;
+      n += part.size() / fields;
     out << "vertices " << n << '\n';
     for (const auto &part : parts)
-      for (std::size_t i = 0; i < part.size(); i += 6)
-        out << part[i] << ' ' << part[i + 1] << ' ' << part[i + 2] << ' ' << part[i + 3] << ' ' << part[i + 4] << ' '
-            << part[i + 5] << '\n';
+      for (std::size_t i = 0; i < part.size(); i += fields)
+        for (std::size_t k = 0; k < fields; ++k)
+          out << part[i + k] << (k + 1 < fields ? ' ' : '\n');
     out << "statistics\n" << statistics_text;
     write_file_atomically(path, out.str());
   }
 
   std::map<std::string, double> load_checkpoint(const std::string &path, const Surface &surface,
-                                                Vector &displacement, Vector &phi, std::string &statistics_text)
+                                                Vector &displacement, Vector &phi, Vector &reference_areas,
+                                                std::string &statistics_text)
   {
     std::ifstream in(path);
     AssertThrow(in, ExcMessage("Entry <Checkpoint/Resume from>: cannot open the checkpoint <" + path + ">"));
     std::string line;
-    AssertThrow(std::getline(in, line) && line == magic,
+    AssertThrow(std::getline(in, line) && (line == magic || line == magic_v1),
                 ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> is not a membrane checkpoint"));
+    const bool                    has_areas = line == magic;
     std::map<std::string, double> scalars;
     std::size_t                   n = 0;
     while (std::getline(in, line))
@@ -93,13 +100,15 @@ namespace Membrane
           }
         words >> scalars[name];
       }
-    std::map<Key, std::array<double, 4>> values;
+    std::map<Key, std::array<double, 5>> values;
     for (std::size_t i = 0; i < n && std::getline(in, line); ++i)
       {
         std::istringstream    words(line);
         double                x, y;
-        std::array<double, 4> v;
+        std::array<double, 5> v{};
         words >> x >> y >> v[0] >> v[1] >> v[2] >> v[3];
+        if (has_areas)
+          words >> v[4];
         values[{x, y}] = v;
       }
     AssertThrow(std::getline(in, line) && line == "statistics",
@@ -116,7 +125,8 @@ namespace Membrane
         }
       for (unsigned int c = 0; c < spacedim; ++c)
         displacement[vector_dofs[c]] = it->second[c];
-      phi[dof] = it->second[3];
+      phi[dof]             = it->second[3];
+      reference_areas[dof] = it->second[4];
     });
     const MPI_Comm comm = surface.scalar_space().communicator();
     AssertThrow(Utilities::MPI::min(all_found ? 1 : 0, comm) == 1,
@@ -124,6 +134,7 @@ namespace Membrane
                            "<Mesh/Cells per side>)"));
     displacement.compress(VectorOperation::insert);
     phi.compress(VectorOperation::insert);
+    reference_areas.compress(VectorOperation::insert);
     surface.vector_space().constraints().distribute(displacement);
     surface.scalar_space().constraints().distribute(phi);
     return scalars;

@@ -1,28 +1,162 @@
 #include <membrane/solvers/linear_solver.h>
 
-#include <deal.II/lac/petsc_precondition.h>
-#include <deal.II/lac/petsc_solver.h>
-#include <deal.II/lac/solver_control.h>
+#include <deal.II/base/exceptions.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
 
 namespace Membrane
 {
   using namespace dealii;
 
-  unsigned int solve_linear_system(const SparseMatrix &matrix, Vector &solution, const Vector &rhs,
-                                   const LinearSolverOptions &options)
+  namespace
   {
-    const MPI_Comm comm = matrix.get_mpi_communicator();
+    void check(const PetscErrorCode code, const char *what)
+    {
+      AssertThrow(code == 0, ExcMessage(std::string("PETSc error in ") + what + " (code " + std::to_string(code) + ")"));
+    }
+  } // namespace
+
+  LinearSolver::LinearSolver(LinearSolverOptions options)
+    : options(std::move(options))
+  {}
+
+  LinearSolver::~LinearSolver()
+  {
+    reset();
+  }
+
+  void LinearSolver::reset()
+  {
+    if (ksp != nullptr)
+      KSPDestroy(&ksp);
+    if (factorized != nullptr)
+      MatDestroy(&factorized);
+    ksp        = nullptr;
+    factorized = nullptr;
+  }
+
+  void LinearSolver::create(const MPI_Comm communicator)
+  {
+    check(KSPCreate(communicator, &ksp), "KSPCreate");
+    PC pc;
+    check(KSPGetPC(ksp, &pc), "KSPGetPC");
     if (options.type == "direct")
       {
-        SolverControl                      control(1, 0);
-        PETScWrappers::SparseDirectMUMPS   mumps(control, comm);
-        mumps.solve(matrix, solution, rhs);
-        return 1;
+        check(PCSetType(pc, PCLU), "PCSetType");
+        check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+        if (options.reuse_iterations > 0)
+          {
+            // The LU factors of an earlier matrix precondition GMRES for the current
+            // one; right preconditioning makes the test act on the true residual.
+            check(KSPSetType(ksp, KSPGMRES), "KSPSetType");
+            check(KSPSetPCSide(ksp, PC_RIGHT), "KSPSetPCSide");
+            check(KSPSetTolerances(ksp, options.reuse_tolerance, 0.0, PETSC_DEFAULT,
+                                   static_cast<PetscInt>(options.reuse_iterations)),
+                  "KSPSetTolerances");
+          }
+        else
+          check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
       }
-    SolverControl                      control(options.max_iterations, options.relative_tolerance * rhs.l2_norm());
-    PETScWrappers::SolverGMRES         gmres(control, comm, PETScWrappers::SolverGMRES::AdditionalData(100));
-    PETScWrappers::PreconditionBlockJacobi preconditioner(matrix);
-    gmres.solve(matrix, solution, rhs, preconditioner);
-    return control.last_step();
+    else
+      {
+        check(KSPSetType(ksp, KSPGMRES), "KSPSetType");
+        check(KSPGMRESSetRestart(ksp, 100), "KSPGMRESSetRestart");
+        check(PCSetType(pc, PCBJACOBI), "PCSetType");
+        check(KSPSetTolerances(ksp, options.relative_tolerance, 0.0, PETSC_DEFAULT,
+                               static_cast<PetscInt>(options.max_iterations)),
+              "KSPSetTolerances");
+      }
+    // Expert tuning through PETSc's options database (e.g. PETSC_OPTIONS="-mat_mumps_icntl_7 5").
+    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+  }
+
+  void LinearSolver::factorize(const Mat matrix)
+  {
+    if (factorized == nullptr)
+      check(MatDuplicate(matrix, MAT_COPY_VALUES, &factorized), "MatDuplicate");
+    else
+      check(MatCopy(matrix, factorized, SAME_NONZERO_PATTERN), "MatCopy");
+    // A new state of the preconditioning matrix: PETSc refactorizes numerically
+    // and keeps the symbolic analysis (the pattern is the same).
+    check(KSPSetOperators(ksp, matrix, factorized), "KSPSetOperators");
+    check(KSPSetUp(ksp), "KSPSetUp (factorization)");
+    PC pc;
+    check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    PCFailedReason reason;
+    check(PCGetFailedReason(pc, &reason), "PCGetFailedReason");
+    AssertThrow(reason == PC_NOERROR, ExcMessage("the LU factorization failed (PETSc PC reason " +
+                                                 std::to_string(static_cast<int>(reason)) + ")"));
+    factors_current = true;
+    ++factorizations;
+  }
+
+  unsigned int LinearSolver::apply_factors(Vector &solution, const Vector &rhs)
+  {
+    // The factors are those of the current matrix: one substitution is the direct
+    // solution (iterating cannot improve on its round-off).
+    PC pc;
+    check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    check(PCApply(pc, rhs, solution), "PCApply");
+    AssertThrow(std::isfinite(solution.l2_norm()), ExcMessage("the LU solve gave non-finite values"));
+    return 1;
+  }
+
+  unsigned int LinearSolver::solve(const SparseMatrix &matrix, Vector &solution, const Vector &rhs)
+  {
+    current = matrix; // MatrixBase::operator Mat
+    if (ksp == nullptr)
+      create(matrix.get_mpi_communicator());
+    if (options.type == "direct" && options.reuse_iterations > 0)
+      {
+        if (factorized != nullptr)
+          {
+            check(KSPSetOperators(ksp, current, factorized), "KSPSetOperators");
+            factors_current = false;
+            if (try_solve(solution, rhs))
+              return iterations();
+          }
+        factorize(current); // none yet, or the old factors no longer precondition well enough
+        return apply_factors(solution, rhs);
+      }
+    check(KSPSetOperators(ksp, current, current), "KSPSetOperators");
+    if (options.type == "direct")
+      ++factorizations;
+    AssertThrow(try_solve(solution, rhs), ExcMessage("the linear solver (" + options.type + ") failed: " + failure));
+    return iterations();
+  }
+
+  unsigned int LinearSolver::solve_again(Vector &solution, const Vector &rhs)
+  {
+    AssertThrow(ksp != nullptr, ExcMessage("LinearSolver::solve_again() before solve()"));
+    if (options.type == "direct" && options.reuse_iterations > 0)
+      {
+        if (factors_current)
+          return apply_factors(solution, rhs);
+        if (try_solve(solution, rhs))
+          return iterations();
+        factorize(current);
+        return apply_factors(solution, rhs);
+      }
+    AssertThrow(try_solve(solution, rhs), ExcMessage("the linear solver (" + options.type + ") failed: " + failure));
+    return iterations();
+  }
+
+  bool LinearSolver::try_solve(Vector &solution, const Vector &rhs)
+  {
+    check(KSPSolve(ksp, rhs, solution), "KSPSolve");
+    KSPConvergedReason reason;
+    check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+    failure = "PETSc reason " + std::to_string(static_cast<int>(reason));
+    return reason > 0;
+  }
+
+  unsigned int LinearSolver::iterations() const
+  {
+    PetscInt n = 1;
+    if (options.type != "direct" || options.reuse_iterations > 0)
+      check(KSPGetIterationNumber(ksp, &n), "KSPGetIterationNumber");
+    return static_cast<unsigned int>(std::max<PetscInt>(n, 1));
   }
 } // namespace Membrane

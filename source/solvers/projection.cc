@@ -12,7 +12,7 @@ namespace Membrane
 
   void assemble_mass_matrix(const Surface &surface, const FieldSpace &space, SparseMatrix &mass)
   {
-    space.reinit_matrix(mass);
+    mass = 0;
     const QGauss<dim>       quadrature(2);
     FEValues<dim, spacedim> fe_values(surface.mapping(), space.fe(), quadrature,
                                       update_values | update_JxW_values);
@@ -37,8 +37,9 @@ namespace Membrane
     mass.compress(VectorOperation::add);
   }
 
-  Vector solve_mass_system(const FieldSpace &space, const SparseMatrix &mass, const Vector &rhs)
+  Vector project(const Surface &surface, const FieldSpace &space, const Vector &rhs)
   {
+    const SparseMatrix &mass = surface.mass_matrix(space);
     Vector                         solution = space.make_owned();
     SolverControl                  control(1000, 1e-13 * rhs.l2_norm() + 1e-300);
     PETScWrappers::SolverCG        cg(control);

@@ -93,9 +93,7 @@ namespace Membrane
             local(i) -= fe_values.shape_grad(i, q)[fe.system_to_component_index(i).first] *
                         fe_values.JxW(q);
       });
-    SparseMatrix mass;
-    assemble_mass_matrix(surface, vectors, mass);
-    const Vector curvature_vector = vectors.ghosted_copy(solve_mass_system(vectors, mass, rhs));
+    const Vector curvature_vector = vectors.ghosted_copy(project(surface, vectors, rhs));
 
     return nodal_dot_product(surface, curvature_vector, normal_ghosted);
   }
@@ -147,9 +145,7 @@ namespace Membrane
               local(i) += gauss * fe_values.shape_value(i, q) * fe_values.JxW(q);
           }
       });
-    SparseMatrix mass;
-    assemble_mass_matrix(surface, scalars, mass);
-    return solve_mass_system(scalars, mass, rhs);
+    return project(surface, scalars, rhs);
   }
 
   Geometry compute_geometry(const Surface &surface)
@@ -159,6 +155,25 @@ namespace Membrane
     geometry.mean_curvature  = surface.scalar_space().ghosted_copy(compute_mean_curvature(surface, geometry.normal));
     geometry.gauss_curvature = surface.scalar_space().ghosted_copy(compute_gauss_curvature(surface, geometry.normal));
     return geometry;
+  }
+
+  Vector vertex_areas(const Surface &surface)
+  {
+    return assemble_rhs(surface, surface.scalar_space(), update_values,
+                        [](const auto &, const FEValues<dim, spacedim> &fe_values, dealii::Vector<double> &local) {
+                          for (const unsigned int q : fe_values.quadrature_point_indices())
+                            for (unsigned int i = 0; i < fe_values.dofs_per_cell; ++i)
+                              local(i) += fe_values.shape_value(i, q) * fe_values.JxW(q);
+                        });
+  }
+
+  double max_relative_difference(const Vector &a, const Vector &b)
+  {
+    double local = 0;
+    for (const auto i : b.locally_owned_elements())
+      if (b[i] > 0)
+        local = std::max(local, std::abs(a[i] - b[i]) / b[i]);
+    return Utilities::MPI::max(local, b.get_mpi_communicator());
   }
 
   double integrate(const Surface &surface, const Vector &scalar_ghosted)

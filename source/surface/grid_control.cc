@@ -93,9 +93,7 @@ namespace Membrane
           vectors.constraints().distribute_local_to_global(local, dof_indices, rhs);
         }
     rhs.compress(VectorOperation::add);
-    SparseMatrix mass;
-    assemble_mass_matrix(surface, vectors, mass);
-    return solve_mass_system(vectors, mass, rhs);
+    return project(surface, vectors, rhs);
   }
 
   double move_tangentially_and_remap(Surface &surface, const Vector &shift, Vector &phi)

@@ -1,3 +1,4 @@
+#include <membrane/solvers/projection.h>
 #include <membrane/surface/surface.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -48,6 +49,21 @@ namespace Membrane
     displacement_ghosted = vectors.make_ghosted();
     eulerian = std::make_unique<MappingQEulerian<dim, Vector, spacedim>>(
       1, vectors.dof_handler(), displacement_ghosted);
+    scalars.reinit_matrix(scalar_mass.matrix);
+    vectors.reinit_matrix(vector_mass.matrix);
+    scalar_mass.current = vector_mass.current = false;
+  }
+
+  const SparseMatrix &Surface::mass_matrix(const FieldSpace &space) const
+  {
+    Assert(&space == &scalars || &space == &vectors, ExcMessage("not a space of this surface"));
+    CachedMass &cache = &space == &scalars ? scalar_mass : vector_mass;
+    if (!cache.current)
+      {
+        assemble_mass_matrix(*this, space, cache.matrix);
+        cache.current = true;
+      }
+    return cache.matrix;
   }
 
   const Mapping<dim, spacedim> &Surface::reference_mapping() const
@@ -60,6 +76,7 @@ namespace Membrane
     Vector constrained = displacement_owned;
     vectors.constraints().distribute(constrained);
     displacement_ghosted = constrained;
+    scalar_mass.current = vector_mass.current = false;
   }
 
   double Surface::area() const

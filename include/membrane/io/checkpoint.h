@@ -1,7 +1,8 @@
 #pragma once
 // Checkpoints: the state a run needs to continue exactly as if uninterrupted.
 // A text file (written atomically by rank 0) with named scalars (time, tau,
-// step, ...), the vertex values of the displacement D and of phi keyed by the
+// step, ...), the vertex values of the displacement D, of phi and of the reference
+// vertex areas of the local area constraint, keyed by the
 // reference position of the vertex (so the file does not depend on the number
 // of MPI ranks or the DoF numbering), and the statistics so far. Values are
 // written with 17 significant digits, which round-trips doubles exactly.
@@ -14,13 +15,15 @@
 namespace Membrane
 {
   void save_checkpoint(const std::string &path, const Surface &surface, const Vector &phi_ghosted,
-                       const std::map<std::string, double> &scalars, const std::string &statistics_text);
+                       const Vector &reference_areas, const std::map<std::string, double> &scalars, const std::string &statistics_text);
 
-  /// Reads `path` into the displacement and phi (owned vectors of the surface's
-  /// spaces, constraints applied) and the statistics text; returns the scalars.
+  /// Reads `path` into the displacement, phi and the reference vertex areas (owned
+  /// vectors of the surface's spaces, constraints applied) and the statistics text;
+  /// returns the scalars. A checkpoint of format 1 (without reference areas) gets
+  /// the areas of its surface.
   /// Throws with a clear message if the file is missing, truncated or belongs
   /// to another mesh.
   std::map<std::string, double> load_checkpoint(const std::string &path, const Surface &surface,
                                                 Vector &displacement_owned, Vector &phi_owned,
-                                                std::string &statistics_text);
+                                                Vector &reference_areas_owned, std::string &statistics_text);
 } // namespace Membrane

@@ -1,9 +1,18 @@
 #pragma once
-// Solvers for the (non-symmetric) coupled systems of a time step.
-//  direct: MUMPS through PETSc, the robust default;
+// Solvers for the (non-symmetric) coupled systems of a time step, kept alive
+// across steps so that work that depends only on the mesh is done once:
+//  direct: LU by MUMPS through PETSc, the robust default. The symbolic analysis
+//          (fill-reducing ordering) is reused while the sparsity pattern is
+//          unchanged, and a second right-hand side costs one substitution.
+//          With reuse_iterations > 0 the factors of an earlier matrix are kept as
+//          the preconditioner of GMRES for the next matrices (which change little
+//          from one time step to the next); only when GMRES needs more than
+//          reuse_iterations iterations is the current matrix factorized;
 //  gmres:  restarted GMRES with PETSc's block-Jacobi/ILU, for large runs.
 
 #include <membrane/types.h>
+
+#include <petscksp.h>
 
 #include <string>
 
@@ -14,10 +23,50 @@ namespace Membrane
     std::string  type              = "direct";
     double       relative_tolerance = 1e-10;
     unsigned int max_iterations     = 2000;
+    /// direct: GMRES iterations allowed with earlier LU factors before
+    /// refactorizing (0: factorize every matrix).
+    unsigned int reuse_iterations = 0;
+    /// direct with reuse: relative residual reached by those iterations.
+    double reuse_tolerance = 1e-12;
   };
 
-  /// Solve matrix * solution = rhs; returns the iteration count (1 for direct).
-  /// Throws dealii::SolverControl::NoConvergence on failure.
-  unsigned int solve_linear_system(const SparseMatrix &matrix, Vector &solution, const Vector &rhs,
-                                   const LinearSolverOptions &options);
+  class LinearSolver
+  {
+  public:
+    explicit LinearSolver(LinearSolverOptions options = {});
+    ~LinearSolver();
+    LinearSolver(const LinearSolver &)            = delete;
+    LinearSolver &operator=(const LinearSolver &) = delete;
+
+    /// Solve matrix * solution = rhs; returns the iteration count (1 for direct).
+    /// A matrix with the pattern of the previous one is factorized numerically
+    /// only (the ordering is reused). Throws dealii::ExcMessage on failure (zero
+    /// pivot, no convergence).
+    unsigned int solve(const SparseMatrix &matrix, Vector &solution, const Vector &rhs);
+
+    /// Another right-hand side for the matrix of the last solve(), which must be
+    /// unchanged since: no factorization, one forward/back substitution.
+    unsigned int solve_again(Vector &solution, const Vector &rhs);
+
+    /// Forget the operator and its factorization (call after a mesh change).
+    void reset();
+
+    /// Numeric factorizations done so far (for benchmarks and tests).
+    unsigned int n_factorizations() const { return factorizations; }
+
+  private:
+    void         create(MPI_Comm communicator);
+    void         factorize(Mat matrix);
+    bool         try_solve(Vector &solution, const Vector &rhs);
+    unsigned int apply_factors(Vector &solution, const Vector &rhs);
+    unsigned int iterations() const;
+
+    LinearSolverOptions options;
+    KSP                 ksp            = nullptr;
+    Mat                 factorized     = nullptr; ///< copy of the matrix whose LU factors are in use
+    Mat                 current        = nullptr; ///< the matrix of the last solve()
+    bool                factors_current = false;  ///< `factorized` equals `current`
+    unsigned int        factorizations = 0;
+    std::string         failure;
+  };
 } // namespace Membrane

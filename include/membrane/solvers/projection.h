@@ -7,10 +7,11 @@
 
 namespace Membrane
 {
-  /// Mass matrix of `space` on the current surface of `surface`.
+  /// Mass matrix of `space` on the current surface of `surface`, assembled into
+  /// `mass`, which must already have the sparsity of `space` (reinit_matrix).
   void assemble_mass_matrix(const Surface &surface, const FieldSpace &space, SparseMatrix &mass);
 
-  /// Solve mass * u = rhs (rhs assembled with constraints); returns u owned,
-  /// constraints applied.
-  Vector solve_mass_system(const FieldSpace &space, const SparseMatrix &mass, const Vector &rhs);
+  /// The L2 projection: solve M u = rhs (rhs assembled with constraints) with the
+  /// surface's mass matrix of `space`; returns u owned, constraints applied.
+  Vector project(const Surface &surface, const FieldSpace &space, const Vector &rhs);
 } // namespace Membrane

@@ -34,6 +34,14 @@ namespace Membrane
   /// as an owned scalar-space vector with constraints applied.
   Vector nodal_dot_product(const Surface &surface, const Vector &a_ghosted, const Vector &b_ghosted);
 
+  /// The area carried by each vertex, a_i = integral psi_i ds over the current surface
+  /// (owned scalar-space vector, assembled: constrained vertices hold 0, their share
+  /// is in their masters). Their sum is the total area, and integral phi ds = sum phi_i a_i.
+  Vector vertex_areas(const Surface &surface);
+
+  /// Largest |a_i - b_i| / b_i over the vertices with b_i > 0 (global).
+  double max_relative_difference(const Vector &a, const Vector &b);
+
   /// Integral of a scalar-space field over the current surface.
   double integrate(const Surface &surface, const Vector &scalar_ghosted);
 } // namespace Membrane

@@ -43,6 +43,11 @@ namespace Membrane
     const dealii::Mapping<dim, spacedim> &mapping() const { return *eulerian; }
     const dealii::Mapping<dim, spacedim> &reference_mapping() const;
 
+    /// Consistent mass matrix of the scalar or the vector space on the current
+    /// surface. Assembled on first use after each change of the displacement into
+    /// a matrix whose sparsity is built once per mesh.
+    const SparseMatrix &mass_matrix(const FieldSpace &space) const;
+
     /// Total area of the current surface.
     double area() const;
     /// Largest cell diameter on the current surface (global).
@@ -54,6 +59,12 @@ namespace Membrane
     FieldSpace           vectors;
     FieldSpace           scalars;
     Vector               displacement_ghosted;
+    struct CachedMass
+    {
+      SparseMatrix matrix;
+      bool         current = false;
+    };
+    mutable CachedMass scalar_mass, vector_mass;
     std::unique_ptr<dealii::MappingQEulerian<dim, Vector, spacedim>> eulerian;
   };
 } // namespace Membrane
