@@ -181,6 +181,9 @@ namespace Membrane
   void Parameters::declare(ParameterHandler &prm)
   {
     declare_initial_state(prm);
+    prm.enter_subsection("Mesh");
+    declare_adaptivity_parameters(prm);
+    prm.leave_subsection();
     declare_material(prm);
     declare_numerics(prm);
   }
@@ -189,6 +192,7 @@ namespace Membrane
   {
     prm.enter_subsection("Mesh");
     cells_per_side = prm.get_integer("Cells per side");
+    adaptivity     = parse_adaptivity_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Initial shape");

@@ -8,6 +8,7 @@
 #include <membrane/physics/material.h>
 #include <membrane/shape_solver.h>
 #include <membrane/solvers/linear_solver.h>
+#include <membrane/surface/adaptivity.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -20,7 +21,8 @@ namespace Membrane
   struct Parameters
   {
     // Mesh
-    unsigned int cells_per_side = 32;
+    unsigned int      cells_per_side = 32;
+    AdaptivityOptions adaptivity;
     // Initial shape
     std::string shape = "flat";
     double      bump_radius = 0.5, bump_area = 1.3;

@@ -1,0 +1,35 @@
+#pragma once
+// Local refinement and coarsening of the surface mesh (MODEL.md section 9).
+//
+// Indicators per cell, on the current surface (h: the cell's diameter on Gamma):
+//  - interface: the cell holds part of the diffuse interface (phi between
+//    -Interface phi and +Interface phi at some vertex, or a sign change) and
+//    h > xi / (Interface cells per xi);
+//  - geometry: h |kappa| > Curvature resolution, with |kappa| estimated from the
+//    vertex values of H and K (largest principal curvature |H|/2 + sqrt(H^2/4 - K)).
+// A cell is refined if an indicator asks for it and its level is below Maximum
+// refinement level; it is coarsened (down to the input mesh) if neither indicator
+// would ask for it at twice its size. Adaptation happens every Interval steps.
+
+#include <membrane/surface/geometry.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+namespace Membrane
+{
+  struct AdaptivityOptions
+  {
+    unsigned int max_level             = 0;    ///< levels above the input mesh (0: uniform, no adaptation)
+    unsigned int interval              = 10;   ///< accepted steps between adaptations
+    double       interface_cells_per_xi = 1.5; ///< target h <= xi / this where the interface is
+    double       interface_phi          = 0.9; ///< |phi| below this at a vertex marks the interface
+    double       curvature_resolution   = 0.3; ///< target h |kappa_max| <= this
+
+    bool enabled() const { return max_level > 0; }
+  };
+
+  /// Entries of the subsection Mesh (the caller enters it).
+  void declare_adaptivity_parameters(dealii::ParameterHandler &prm);
+  /// Reads them (the caller enters Mesh); throws naming the entry on bad input.
+  AdaptivityOptions parse_adaptivity_parameters(dealii::ParameterHandler &prm);
+} // namespace Membrane
