@@ -47,6 +47,9 @@ namespace Membrane
   {
     TimerOutput::Scope scope(timer, "setup");
     make_periodic_unit_square(triangulation, parameters.cells_per_side);
+    base_level = factor_cells_per_side(parameters.cells_per_side).second;
+    if (!parameters.resume_from.empty())
+      refine_like_checkpoint(parameters.resume_from, triangulation);
     surface.setup();
     cahn_hilliard.setup();
     if (parameters.evolve_shape)
@@ -107,6 +110,11 @@ namespace Membrane
     initial_area       = scalars.at("initial_area");
     initial_mass       = scalars.at("initial_mass");
     next_output_time   = scalars.at("next_output_time");
+    if (scalars.count("adaptations"))
+      {
+        adaptations            = static_cast<unsigned int>(scalars.at("adaptations"));
+        adaptation_energy_jump = scalars.at("adaptation_energy_jump");
+      }
     stats              = Statistics::from_text(statistics_text);
     cell_quality       = min_corner_sine(surface, geometry.normal);
     output->resume(time);
@@ -116,13 +124,26 @@ namespace Membrane
   void Simulator::warn_if_unresolved() const
   {
     // The diffuse interface phi = tanh(1.06 s / xi) spans about 2.8 xi between
-    // phi = -0.9 and 0.9; it needs h <= 1.25 xi to be seen by >= 2 cells.
-    const double h  = surface.max_cell_diameter() / std::sqrt(2.0);
-    const double xi = parameters.material.transition_length;
-    if (h > 1.25 * xi)
-      pcout << "Warning: cell size h = " << h << " exceeds 1.25 x the transition length xi = " << xi
-            << " (h/xi = " << h / xi << "); the diffuse interface (width ~2.8 xi) is under-resolved. "
-            << "Increase <Mesh/Cells per side> to at least " << std::ceil(1.0 / (1.25 * xi)) << ".\n";
+    // phi = -0.9 and 0.9; it needs h <= 1.25 xi to be seen by >= 2 cells. h is
+    // measured on the current surface, where the interface is (everywhere if none).
+    const double xi        = parameters.material.transition_length;
+    const double interface = interface_cell_size(surface, phi, parameters.adaptivity.interface_phi);
+    const double h         = interface > 0 ? interface : surface.max_cell_diameter() / std::sqrt(2.0);
+    if (h <= 1.25 * xi)
+      return;
+    pcout << "Warning: cell size h = " << h << (interface > 0 ? " at the interface" : "")
+          << " exceeds 1.25 x the transition length xi = " << xi << " (h/xi = " << h / xi
+          << "); the diffuse interface (width ~2.8 xi) is under-resolved. ";
+    const double factor = h / (1.25 * xi);
+    if (parameters.adaptivity.enabled() && finest_level() < parameters.adaptivity.max_level)
+      pcout << "Raise <Mesh/Interface cells per xi> to at least "
+            << std::ceil(10 * parameters.adaptivity.interface_cells_per_xi * factor) / 10 << ".\n";
+    else if (parameters.adaptivity.enabled())
+      pcout << "Raise <Mesh/Maximum refinement level> above " << parameters.adaptivity.max_level
+            << " or <Mesh/Cells per side> to at least " << std::ceil(parameters.cells_per_side * factor) << ".\n";
+    else
+      pcout << "Increase <Mesh/Cells per side> to at least " << std::ceil(parameters.cells_per_side * factor)
+            << ", or refine locally with <Mesh/Maximum refinement level>.\n";
   }
 
   Simulator::State Simulator::save_state() const
@@ -343,6 +364,11 @@ namespace Membrane
     stats.set("shape_mass_correction", shape_mass_correction);
     stats.set("area_projections", area_projections);
     stats.set("solver_iterations", solver_iterations);
+    stats.set("cells", triangulation.n_global_active_cells());
+    stats.set("dofs", surface.scalar_space().dof_handler().n_dofs());
+    stats.set("refinement_level", finest_level());
+    stats.set("adaptations", adaptations);
+    stats.set("adaptation_energy_jump", adaptation_energy_jump);
     stats.set("wall_seconds", wall.wall_time());
     stats.end_row();
   }
@@ -371,7 +397,9 @@ namespace Membrane
                      {"grid_control_skipped", grid_control_skipped},
                      {"initial_area", initial_area},
                      {"initial_mass", initial_mass},
-                     {"next_output_time", next_output_time}},
+                     {"next_output_time", next_output_time},
+                     {"adaptations", adaptations},
+                     {"adaptation_energy_jump", adaptation_energy_jump}},
                     stats.to_text());
   }
 
@@ -404,7 +432,8 @@ namespace Membrane
         << (step > 0 ? double(grid_control_skipped) / step : 0.0);
     for (const char *c : {"energy", "bending_energy", "gaussian_energy", "gradient_energy", "well_energy", "area",
                           "area_drift", "mass", "mass_drift", "bud_height", "neck_radius", "bud_radius", "neck_ratio",
-                          "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error"})
+                          "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error", "cells",
+                          "adaptations", "adaptation_energy_jump"})
       out << ",\n  \"" << c << "\": " << stats.last(c);
     out << "\n}\n";
     write_file_atomically(parameters.output_directory + "/summary.json", out.str());
@@ -415,7 +444,10 @@ namespace Membrane
     wall.restart();
     setup();
     if (parameters.resume_from.empty())
-      set_initial_state();
+      {
+        set_initial_state();
+        adapt_initial_mesh();
+      }
     else
       resume();
     warn_if_unresolved();
@@ -485,7 +517,9 @@ namespace Membrane
         grid_control_skipped += grid_move_skipped;
         record_statistics(trial);
         const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
-        step_control.accept(trial, max_increment, 1.0 / parameters.cells_per_side, change);
+        step_control.accept(trial, max_increment, 1.0 / (parameters.cells_per_side << finest_level()), change);
+        if (parameters.adaptivity.enabled() && step % parameters.adaptivity.interval == 0)
+          adapt_mesh();
 
         const bool output_due = time >= next_output_time * (1 - 1e-12);
         if (output_due || finished())

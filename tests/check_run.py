@@ -2,7 +2,9 @@
 """Check a finished run directory (statistics.txt and summary.json).
 Usage: check_run.py <dir> [--direction +1|-1] [--max-drift X] [--outcome NAME] [--min-rejected N] [--stop-reason REGEX]
 Always asserts: the run did not fail, and the discrete energy never increases
-from one accepted step to the next (beyond 1e-10 relative)."""
+from one accepted step to the next (beyond 1e-10 relative). Mesh adaptations are not
+steps of the gradient flow: their energy changes (column adaptation_energy_jump,
+cumulative) are taken out before the comparison."""
 import argparse
 import json
 import sys
@@ -16,6 +18,8 @@ parser.add_argument("--max-drift", type=float)
 parser.add_argument("--outcome")
 parser.add_argument("--min-rejected", type=int)
 parser.add_argument("--stop-reason", help="regular expression the stop reason must match")
+parser.add_argument("--min-adaptations", type=int, help="mesh adaptations the run must have made")
+parser.add_argument("--max-mass-drift", type=float, help="bound on |mass_drift| in every row")
 args = parser.parse_args()
 
 with open(f"{args.dir}/statistics.txt") as f:
@@ -33,7 +37,8 @@ def check(condition, message):
 
 check(not summary["failed"], f"run finished: {summary['stop_reason']} after {summary['steps']} steps")
 energy = column["energy"]
-rises = np.diff(energy) / np.abs(energy[:-1])
+flow_energy = energy - column.get("adaptation_energy_jump", 0 * energy)
+rises = np.diff(flow_energy) / np.abs(energy[:-1])
 check(len(energy) > 5 and rises.max() <= 1e-10,
       f"energy {energy[0]:.6g} -> {energy[-1]:.6g} over {len(energy) - 1} steps, largest relative rise {rises.max():.2e}")
 if args.max_drift is not None:
@@ -49,6 +54,13 @@ if args.stop_reason is not None:
     import re
     check(re.search(args.stop_reason, summary["stop_reason"]) is not None,
           f"stop reason '{summary['stop_reason']}' matches /{args.stop_reason}/")
+if args.min_adaptations is not None:
+    n = int(column["adaptations"][-1])
+    check(n >= args.min_adaptations, f"{n} mesh adaptations (at least {args.min_adaptations} expected), cells "
+          f"{int(column['cells'].min())}-{int(column['cells'].max())}")
+if args.max_mass_drift is not None:
+    drift = np.abs(column["mass_drift"]).max()
+    check(drift <= args.max_mass_drift, f"mass drift {drift:.2e} <= {args.max_mass_drift:g} in every row")
 if args.outcome is not None:
     check(summary["outcome"] == args.outcome, f"outcome '{summary['outcome']}' (expected '{args.outcome}')")
 sys.exit(0 if ok else 1)

@@ -87,6 +87,18 @@ namespace Membrane
     void      control_grid(double energy_before);
     /// a_ref - a of the current surface (zero if the area is not corrected).
     Vector    area_defect() const;
+    /// Mesh adaptation (simulator_adaptation.cc): mark, transfer the state, set up the
+    /// solvers on the new mesh; false if no cell was flagged.
+    bool      adapt_mesh();
+    /// Refine the initial mesh where the initial state asks for it (up to the maximum
+    /// level), setting the initial state anew on each mesh.
+    void      adapt_initial_mesh();
+    /// a_ref,i / a_i as a ghosted nodal field; carry_reference_areas() is its inverse
+    /// on another mesh or surface (the total reference area kept exactly).
+    Vector       area_ratio() const;
+    void         carry_reference_areas(const Vector &ratio_owned);
+    /// Refinement level of the finest cell above the input mesh.
+    unsigned int finest_level() const;
     void      record_statistics(double tau);
     void      write_checkpoint() const;
     void      write_run_info() const;
@@ -118,6 +130,10 @@ namespace Membrane
     /// Observables of the last accepted step, for the statistics.
     double max_increment = 0, remap_correction = 0, cell_quality = 1, area_error = 0, shape_mass_correction = 0;
     unsigned int area_projections = 0;
+    /// Mesh adaptation: the level of the input mesh, the number of adaptations and the
+    /// sum of their energy changes (not steps of the gradient flow).
+    unsigned int base_level = 0, adaptations = 0;
+    double       adaptation_energy_jump = 0;
     bool   grid_move_skipped = false; ///< in the current trial step
 
     Statistics                         stats;

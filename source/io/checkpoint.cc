@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <set>
+#include <tuple>
 #include <sstream>
 
 namespace Membrane
@@ -42,6 +43,75 @@ namespace Membrane
     }
   } // namespace
 
+  namespace
+  {
+    using CellKey = std::tuple<int, double, double>; ///< level and reference centre of a cell
+
+    /// Every cell with children (level and reference centre), over all ranks.
+    std::set<CellKey> refined_cells(const dealii::Triangulation<dim, spacedim> &triangulation)
+    {
+      std::vector<double> local;
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (auto parent = cell; parent->level() > 0;)
+            {
+              parent = parent->parent();
+              const auto c = parent->center();
+              local.insert(local.end(), {double(parent->level()), c[0], c[1]});
+            }
+      std::set<CellKey> cells;
+      for (const auto &part : Utilities::MPI::all_gather(triangulation.get_communicator(), local))
+        for (std::size_t i = 0; i < part.size(); i += 3)
+          cells.emplace(int(part[i]), part[i + 1], part[i + 2]);
+      return cells;
+    }
+  } // namespace
+
+  void refine_like_checkpoint(const std::string &path, Triangulation &triangulation)
+  {
+    std::ifstream in(path);
+    AssertThrow(in, ExcMessage("Entry <Checkpoint/Resume from>: cannot open the checkpoint <" + path + ">"));
+    std::set<CellKey> refined;
+    for (std::string line; std::getline(in, line);)
+      {
+        std::istringstream words(line);
+        std::string        name;
+        words >> name;
+        if (name == "vertices")
+          break;
+        if (name != "refined")
+          continue;
+        std::size_t n = 0;
+        words >> n;
+        for (std::size_t i = 0; i < n && std::getline(in, line); ++i)
+          {
+            std::istringstream cell(line);
+            int                level;
+            double             x, y;
+            cell >> level >> x >> y;
+            refined.emplace(level, x, y);
+          }
+      }
+    // Refine level by level; p4est's 2:1 balance adds nothing, the saved mesh was balanced.
+    for (bool changed = true; changed;)
+      {
+        unsigned int flagged = 0;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const auto c = cell->center();
+              if (refined.count({cell->level(), c[0], c[1]}))
+                {
+                  cell->set_refine_flag();
+                  ++flagged;
+                }
+            }
+        changed = Utilities::MPI::sum(flagged, triangulation.get_communicator()) > 0;
+        if (changed)
+          triangulation.execute_coarsening_and_refinement();
+      }
+  }
+
   void save_checkpoint(const std::string &path, const Surface &surface, const Vector &phi,
                        const Vector &reference_areas, const std::map<std::string, double> &scalars,
                        const std::string &statistics_text)
@@ -64,6 +134,10 @@ namespace Membrane
     out << magic << '\n' << std::setprecision(17);
     for (const auto &[name, value] : scalars)
       out << name << ' ' << value << '\n';
+    const auto refined = refined_cells(surface.scalar_space().dof_handler().get_triangulation());
+    out << "refined " << refined.size() << '\n';
+    for (const auto &[level, x, y] : refined)
+      out << level << ' ' << x << ' ' << y << '\n';
     std::size_t n = 0;
     for (const auto &part : parts)
       n += part.size() / fields;
@@ -97,6 +171,14 @@ namespace Membrane
           {
             words >> n;
             break;
+          }
+        if (name == "refined") // the mesh: read by refine_like_checkpoint()
+          {
+            std::size_t cells = 0;
+            words >> cells;
+            for (std::size_t i = 0; i < cells && std::getline(in, line); ++i)
+              ;
+            continue;
           }
         words >> scalars[name];
       }

@@ -49,6 +49,14 @@ namespace Membrane
     data_out.add_data_vector(surface.scalar_space().dof_handler(), geometry.gauss_curvature, "K");
     for (const auto &[name, field] : scalar_fields)
       data_out.add_data_vector(surface.scalar_space().dof_handler(), *field, name);
+    // Refinement level of each cell (cell data; levels count from the coarse mesh).
+    const auto            &triangulation = surface.scalar_space().dof_handler().get_triangulation();
+    dealii::Vector<float>  levels(triangulation.n_active_cells());
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        levels[cell->active_cell_index()] = cell->level();
+    data_out.attach_dof_handler(surface.scalar_space().dof_handler());
+    data_out.add_data_vector(levels, "level", DataOut<dim, spacedim>::type_cell_data);
     data_out.build_patches(surface.mapping());
 
     std::ostringstream name;

@@ -1,5 +1,10 @@
 #include <membrane/surface/adaptivity.h>
 
+#include <deal.II/base/geometry_info.h>
+
+#include <algorithm>
+#include <cmath>
+
 namespace Membrane
 {
   using namespace dealii;
@@ -20,6 +25,10 @@ namespace Membrane
     prm.declare_entry("Curvature resolution", "0.3", Patterns::Double(0.01, 10),
                       "Cells are refined until h |kappa_max| <= this (h: cell size on the surface, kappa_max: the "
                       "largest principal curvature at its vertices), so that bud caps and necks are resolved.");
+    prm.declare_entry("Smooth new vertices", "true", Patterns::Bool(),
+                      "Place the vertices created by refinement on a smooth surface through the old vertices and "
+                      "their normals (cubic Hermite edges) instead of on the bilinear surface, whose kinks along the "
+                      "old edges the finer mesh would see as bending energy.");
   }
 
   AdaptivityOptions parse_adaptivity_parameters(ParameterHandler &prm)
@@ -30,6 +39,102 @@ namespace Membrane
     options.interface_cells_per_xi = prm.get_double("Interface cells per xi");
     options.interface_phi          = prm.get_double("Interface phi");
     options.curvature_resolution   = prm.get_double("Curvature resolution");
+    options.smooth_new_vertices    = prm.get_bool("Smooth new vertices");
     return options;
+  }
+} // namespace Membrane
+
+namespace Membrane
+{
+  double cell_size(const Surface &surface, const typename Triangulation::active_cell_iterator &cell)
+  {
+    const auto X = surface.mapping().get_vertices(cell);
+    return std::max({X[0].distance(X[1]), X[0].distance(X[2]), X[1].distance(X[3]), X[2].distance(X[3])});
+  }
+
+  namespace
+  {
+    bool holds_interface(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
+                         const Vector &phi, const double interface_phi)
+    {
+      const auto scalar_cell = scalars.cell(cell);
+      double     low = 1e300, high = -1e300;
+      for (const unsigned int v : cell->vertex_indices())
+        {
+          const double value = phi[scalar_cell->vertex_dof_index(v, 0)];
+          if (std::abs(value) < interface_phi)
+            return true;
+          low  = std::min(low, value);
+          high = std::max(high, value);
+        }
+      return low < 0 && high > 0; // a sharp interface inside the cell
+    }
+  } // namespace
+
+  double interface_cell_size(const Surface &surface, const Vector &phi, const double interface_phi)
+  {
+    double local = 0;
+    for (const auto &cell : surface.scalar_space().dof_handler().get_triangulation().active_cell_iterators())
+      if (cell->is_locally_owned() && holds_interface(surface.scalar_space(), cell, phi, interface_phi))
+        local = std::max(local, cell_size(surface, cell));
+    return Utilities::MPI::max(local, surface.scalar_space().communicator());
+  }
+
+  std::pair<unsigned int, unsigned int> mark_cells(Triangulation &triangulation, const Surface &surface,
+                                                   const Geometry &geometry, const Vector &phi,
+                                                   const double xi, const AdaptivityOptions &options,
+                                                   const unsigned int base_level)
+  {
+    const FieldSpace &scalars = surface.scalar_space();
+    // The band: cells that hold the interface and their vertex neighbours, so that the
+    // interface stays inside refined cells between adaptations.
+    Vector                 band = scalars.make_owned();
+    dealii::Vector<double> ones(GeometryInfo<dim>::vertices_per_cell);
+    ones = 1;
+    std::vector<types::global_dof_index> dofs(GeometryInfo<dim>::vertices_per_cell);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && holds_interface(scalars, cell, phi, options.interface_phi))
+        {
+          scalars.cell(cell)->get_dof_indices(dofs);
+          scalars.constraints().distribute_local_to_global(ones, dofs, band);
+        }
+    band.compress(VectorOperation::add);
+    scalars.constraints().distribute(band);
+    const Vector band_ghosted = scalars.ghosted_copy(band);
+
+    const double target = xi / options.interface_cells_per_xi;
+    unsigned int refine = 0, coarsen = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const auto scalar_cell = scalars.cell(cell);
+          bool       in_band     = false;
+          double     kappa_max   = 0;
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const auto   dof = scalar_cell->vertex_dof_index(v, 0);
+              const double H = geometry.mean_curvature[dof], K = geometry.gauss_curvature[dof];
+              in_band          = in_band || band_ghosted[dof] > 0;
+              kappa_max        = std::max(kappa_max, 0.5 * std::abs(H) + std::sqrt(std::max(0.0, 0.25 * H * H - K)));
+            }
+          const double       h     = cell_size(surface, cell);
+          const unsigned int level = cell->level() - base_level;
+          const bool refine_here = (in_band && h > target) || h * kappa_max > options.curvature_resolution;
+          // Coarsen only where neither indicator would ask for the cell at twice its size,
+          // with a margin of 2 on the curvature so that cells do not flip back and forth.
+          const bool coarse_enough = !in_band && 2 * h * kappa_max < 0.5 * options.curvature_resolution;
+          if (refine_here && level < options.max_level)
+            {
+              cell->set_refine_flag();
+              ++refine;
+            }
+          else if (!refine_here && coarse_enough && level > 0)
+            {
+              cell->set_coarsen_flag();
+              ++coarsen;
+            }
+        }
+    const MPI_Comm comm = triangulation.get_communicator();
+    return {Utilities::MPI::sum(refine, comm), Utilities::MPI::sum(coarsen, comm)};
   }
 } // namespace Membrane

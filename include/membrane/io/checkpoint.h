@@ -17,6 +17,10 @@ namespace Membrane
   void save_checkpoint(const std::string &path, const Surface &surface, const Vector &phi_ghosted,
                        const Vector &reference_areas, const std::map<std::string, double> &scalars, const std::string &statistics_text);
 
+  /// Refine the input mesh `triangulation` until it is the (adapted) mesh the
+  /// checkpoint `path` was written on; call before the spaces are set up.
+  void refine_like_checkpoint(const std::string &path, Triangulation &triangulation);
+
   /// Reads `path` into the displacement, phi and the reference vertex areas (owned
   /// vectors of the surface's spaces, constraints applied) and the statistics text;
   /// returns the scalars. A checkpoint of format 1 (without reference areas) gets

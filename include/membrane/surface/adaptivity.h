@@ -24,6 +24,7 @@ namespace Membrane
     double       interface_cells_per_xi = 1.5; ///< target h <= xi / this where the interface is
     double       interface_phi          = 0.9; ///< |phi| below this at a vertex marks the interface
     double       curvature_resolution   = 0.3; ///< target h |kappa_max| <= this
+    bool         smooth_new_vertices    = true; ///< new vertices on a smooth (Hermite) surface
 
     bool enabled() const { return max_level > 0; }
   };
@@ -32,4 +33,22 @@ namespace Membrane
   void declare_adaptivity_parameters(dealii::ParameterHandler &prm);
   /// Reads them (the caller enters Mesh); throws naming the entry on bad input.
   AdaptivityOptions parse_adaptivity_parameters(dealii::ParameterHandler &prm);
+} // namespace Membrane
+
+namespace Membrane
+{
+  /// Size of a cell on the current surface: its longest edge.
+  double cell_size(const Surface &surface, const typename Triangulation::active_cell_iterator &cell);
+
+  /// Largest size (cell_size) of the cells that hold the diffuse interface (a vertex
+  /// with |phi| < `interface_phi`), over all ranks; 0 if there is no interface.
+  double interface_cell_size(const Surface &surface, const Vector &phi_ghosted, double interface_phi);
+
+  /// Set refinement and coarsening flags on the locally owned cells of `triangulation`
+  /// (the surface's) by the indicators above; `base_level` is the level of the input
+  /// mesh. Returns the global numbers of cells flagged for refinement and coarsening.
+  std::pair<unsigned int, unsigned int> mark_cells(Triangulation &triangulation, const Surface &surface,
+                                                   const Geometry &geometry, const Vector &phi_ghosted,
+                                                   double transition_length, const AdaptivityOptions &options,
+                                                   unsigned int base_level);
 } // namespace Membrane

@@ -1,0 +1,224 @@
+// Mesh adaptation of a run (MODEL.md section 9): marking, transfer of the state to
+// the new mesh, and what must survive it exactly. Part of Simulator.
+#include <membrane/simulator.h>
+#include <membrane/surface/grid_control.h>
+
+#include <deal.II/distributed/solution_transfer.h>
+
+#include <set>
+#include <tuple>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  namespace
+  {
+    using CellKey = std::tuple<int, double, double>; ///< level and reference centre
+
+    CellKey key(const typename Triangulation::cell_iterator &cell)
+    {
+      const auto c = cell->center();
+      return {cell->level(), c[0], c[1]};
+    }
+
+    /// Place the vertices created by refining the cells in `split` on a smooth surface
+    /// instead of on the bilinear one: each new edge midpoint at the midpoint of the cubic
+    /// Hermite curve between the edge's ends, whose tangents are the edge projected on the
+    /// vertex tangent planes, p(1/2) = (A + B)/2 + (T_A - T_B)/8; each cell centre by the
+    /// bilinear (Coons) blend of the corrected midpoints. On a bilinear surface the kinks
+    /// along the old edges would show up in the weak mean curvature of the finer mesh as
+    /// spurious bending energy.
+    void place_new_vertices(const FieldSpace &vectors, const std::set<CellKey> &split, const Vector &normal_ghosted,
+                            Vector &displacement_owned)
+    {
+      const Vector D = vectors.ghosted_copy(displacement_owned);
+      std::set<CellKey> done;
+      for (const auto &cell : vectors.dof_handler().active_cell_iterators())
+        {
+          if (!cell->is_locally_owned() || cell->level() == 0 || !split.count(key(cell->parent())) ||
+              !done.insert(key(cell->parent())).second)
+            continue;
+          const auto parent = cell->parent();
+          // Position and normal of vertex v of child c, and a setter for new vertices.
+          const auto position = [&](const unsigned int c, const unsigned int v) {
+            Point<spacedim> x = parent->child(c)->vertex(v);
+            for (unsigned int d = 0; d < spacedim; ++d)
+              x[d] += D[parent->child(c)->vertex_dof_index(v, d)];
+            return x;
+          };
+          const auto normal = [&](const unsigned int c, const unsigned int v) {
+            Tensor<1, spacedim> n;
+            for (unsigned int d = 0; d < spacedim; ++d)
+              n[d] = normal_ghosted[parent->child(c)->vertex_dof_index(v, d)];
+            return n;
+          };
+          const auto set = [&](const unsigned int c, const unsigned int v, const Point<spacedim> &x) {
+            for (unsigned int d = 0; d < spacedim; ++d)
+              {
+                const auto dof = parent->child(c)->vertex_dof_index(v, d);
+                if (vectors.owned().is_element(dof) && !vectors.constraints().is_constrained(dof))
+                  displacement_owned[dof] = x[d] - parent->child(c)->vertex(v)[d];
+              }
+          };
+          // Parent corner i is vertex i of child i.
+          const auto midpoint = [&](const unsigned int a, const unsigned int b) {
+            const Point<spacedim>     A = position(a, a), B = position(b, b);
+            const Tensor<1, spacedim> chord = B - A, na = normal(a, a), nb = normal(b, b);
+            return Point<spacedim>(0.5 * (A + B) + ((nb * chord) * nb - (na * chord) * na) / 8);
+          };
+          // Edge midpoints: 0-1 is vertex 1 of child 0, 0-2 vertex 2 of child 0,
+          // 1-3 vertex 1 of child 3, 2-3 vertex 2 of child 3; the centre is vertex 3 of child 0.
+          const Point<spacedim> m01 = midpoint(0, 1), m02 = midpoint(0, 2), m13 = midpoint(1, 3),
+                                m23 = midpoint(2, 3);
+          set(0, 1, m01);
+          set(0, 2, m02);
+          set(3, 1, m13);
+          set(3, 2, m23);
+          Point<spacedim> centre;
+          for (unsigned int i = 0; i < 4; ++i)
+            centre -= 0.25 * position(i, i);
+          centre += 0.5 * (m01 + m02 + m13 + m23);
+          set(0, 3, centre);
+        }
+      displacement_owned.compress(VectorOperation::insert);
+      vectors.constraints().distribute(displacement_owned);
+    }
+  } // namespace
+
+  Vector Simulator::area_ratio() const
+  {
+    // a_ref,i / a_i as a nodal field (1 up to the local area error), so that the
+    // reference area can follow the vertices through a change of the mesh.
+    const Vector areas = vertex_areas(surface);
+    Vector       ratio = surface.scalar_space().make_owned();
+    for (const auto i : ratio.locally_owned_elements())
+      ratio[i] = areas[i] > 0 ? reference_areas[i] / areas[i] : 1.0;
+    ratio.compress(VectorOperation::insert);
+    surface.scalar_space().constraints().distribute(ratio);
+    return surface.scalar_space().ghosted_copy(ratio);
+  }
+
+  void Simulator::carry_reference_areas(const Vector &ratio_owned)
+  {
+    Vector carried = vertex_areas(surface);
+    for (const auto i : carried.locally_owned_elements())
+      carried[i] = carried[i] * ratio_owned[i];
+    carried.compress(VectorOperation::insert);
+    const double total = carried.mean_value() * carried.size();
+    if (total > 0)
+      carried *= initial_area / total; // the total reference area is kept exactly
+    reference_areas = carried;
+  }
+
+  unsigned int Simulator::finest_level() const
+  {
+    unsigned int local = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        local = std::max(local, static_cast<unsigned int>(cell->level()));
+    return Utilities::MPI::max(local, communicator) - base_level;
+  }
+
+  bool Simulator::adapt_mesh()
+  {
+    TimerOutput::Scope scope(timer, "mesh adaptation");
+    const auto [n_refine, n_coarsen] = mark_cells(triangulation, surface, geometry, phi,
+                                                  parameters.material.transition_length, parameters.adaptivity,
+                                                  base_level);
+    if (n_refine + n_coarsen == 0)
+      return false;
+    const unsigned int cells_before  = triangulation.n_global_active_cells();
+    const double       energy_before = energy.total();
+
+    // Everything the next step needs: D, phi, the reference areas (as the ratio
+    // a_ref / a, which refined cells split and coarsened cells sum in proportion to
+    // their areas) and gamma (for the output).
+    const Vector displacement = surface.displacement();
+    const Vector ratio        = area_ratio();
+    const Vector normal       = geometry.normal;
+    using Transfer            = parallel::distributed::SolutionTransfer<dim, Vector, spacedim>;
+    Transfer                   vector_transfer(surface.vector_space().dof_handler());
+    Transfer                   scalar_transfer(surface.scalar_space().dof_handler());
+    const std::vector<const Vector *> scalars_in = {&phi, &ratio, &pressure};
+    triangulation.prepare_coarsening_and_refinement();
+    std::set<CellKey> split;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->refine_flag_set())
+        split.insert(key(cell));
+    const std::vector<const Vector *> vectors_in = {&displacement, &normal};
+    vector_transfer.prepare_for_coarsening_and_refinement(vectors_in);
+    scalar_transfer.prepare_for_coarsening_and_refinement(scalars_in);
+    triangulation.execute_coarsening_and_refinement();
+
+    surface.setup();
+    cahn_hilliard.setup();
+    if (parameters.evolve_shape)
+      shape_solver.setup();
+    const FieldSpace &scalars = surface.scalar_space();
+    Vector                moved = surface.vector_space().make_owned(), normal_new = moved;
+    std::vector<Vector *> vectors_out = {&moved, &normal_new};
+    vector_transfer.interpolate(vectors_out);
+    surface.vector_space().constraints().distribute(moved);
+    surface.vector_space().constraints().distribute(normal_new);
+    if (parameters.adaptivity.smooth_new_vertices)
+      place_new_vertices(surface.vector_space(), split, surface.vector_space().ghosted_copy(normal_new), moved);
+    surface.set_displacement(moved);
+    Vector              phi_new = scalars.make_owned(), ratio_new = scalars.make_owned(),
+           pressure_new = scalars.make_owned();
+    std::vector<Vector *> scalars_out = {&phi_new, &ratio_new, &pressure_new};
+    scalar_transfer.interpolate(scalars_out);
+    for (Vector *v : scalars_out)
+      scalars.constraints().distribute(*v);
+
+    // Refinement reproduces the Q1 surface and phi exactly; coarsening drops vertices.
+    // A constant restores integral phi ds to round-off (as after the ALE remap).
+    phi                 = scalars.ghosted_copy(phi_new);
+    const double shift  = (initial_mass - integrate(surface, phi)) / surface.area();
+    phi_new.add(shift);
+    scalars.constraints().distribute(phi_new);
+    phi                = scalars.ghosted_copy(phi_new);
+    pressure           = scalars.ghosted_copy(pressure_new);
+    chemical_potential = scalars.make_ghosted();
+    carry_reference_areas(ratio_new);
+
+    geometry     = compute_geometry(surface);
+    energy       = compute_energy(surface, geometry, phi, parameters.material);
+    cell_quality = min_corner_sine(surface, geometry.normal);
+    adaptation_energy_jump += energy.total() - energy_before;
+    ++adaptations;
+    if (!options.quiet)
+      pcout << "Mesh adapted at t = " << time << ": " << cells_before << " -> " << triangulation.n_global_active_cells()
+            << " cells (" << n_refine << " flagged for refinement, " << n_coarsen << " for coarsening), energy jump "
+            << energy.total() - energy_before << ", mass shift " << shift << '\n';
+    return true;
+  }
+} // namespace Membrane
+
+namespace Membrane
+{
+  void Simulator::adapt_initial_mesh()
+  {
+    if (!parameters.adaptivity.enabled())
+      return;
+    for (unsigned int round = 0; round < parameters.adaptivity.max_level; ++round)
+      {
+        const auto [n_refine, n_coarsen] = mark_cells(triangulation, surface, geometry, phi,
+                                                      parameters.material.transition_length,
+                                                      parameters.adaptivity, base_level);
+        (void)n_coarsen;
+        if (n_refine == 0)
+          break;
+        for (const auto &cell : triangulation.active_cell_iterators())
+          cell->clear_coarsen_flag(); // the initial mesh only grows
+        triangulation.execute_coarsening_and_refinement();
+        surface.setup();
+        cahn_hilliard.setup();
+        if (parameters.evolve_shape)
+          shape_solver.setup();
+        set_initial_state(); // from the formulas on the finer mesh, not interpolated
+      }
+    pcout << "Initial mesh: " << triangulation.n_global_active_cells() << " cells, finest level "
+          << finest_level() << " above the input mesh\n";
+  }
+} // namespace Membrane
