@@ -7,6 +7,7 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -103,7 +104,11 @@ namespace Membrane
     geometry           = compute_geometry(surface);
     energy             = compute_energy(surface, geometry, phi, parameters.material);
     time               = scalars.at("time");
-    step_control.set_tau(scalars.at("tau"));
+    // A resumed run continues with its step size, within the bounds it is given now
+    // (a fixed-step run takes its Time step).
+    step_control.set_tau(parameters.adaptive ? std::clamp(scalars.at("tau"), parameters.min_time_step,
+                                                          parameters.max_time_step)
+                                             : parameters.time_step);
     step               = static_cast<unsigned int>(scalars.at("step"));
     rejected_steps     = static_cast<unsigned int>(scalars.at("rejected_steps"));
     grid_control_skipped = static_cast<unsigned int>(scalars.at("grid_control_skipped"));
