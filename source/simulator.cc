@@ -50,7 +50,8 @@ namespace Membrane
     make_periodic_unit_square(triangulation, parameters.cells_per_side);
     base_level = factor_cells_per_side(parameters.cells_per_side).second;
     if (!parameters.resume_from.empty())
-      refine_like_checkpoint(parameters.resume_from, triangulation);
+      refine_like_checkpoint(parameters.resume_from, triangulation, parameters.cells_per_side,
+                             base_level + parameters.adaptivity.max_level);
     surface.setup();
     cahn_hilliard.setup();
     if (parameters.evolve_shape)
@@ -404,6 +405,7 @@ namespace Membrane
                      {"initial_mass", initial_mass},
                      {"next_output_time", next_output_time},
                      {"adaptations", adaptations},
+                     {"cells_per_side", parameters.cells_per_side},
                      {"adaptation_energy_jump", adaptation_energy_jump}},
                     stats.to_text());
   }

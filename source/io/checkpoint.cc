@@ -3,6 +3,7 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <set>
@@ -67,7 +68,8 @@ namespace Membrane
     }
   } // namespace
 
-  void refine_like_checkpoint(const std::string &path, Triangulation &triangulation)
+  void refine_like_checkpoint(const std::string &path, Triangulation &triangulation, const unsigned int cells_per_side,
+                              const unsigned int finest_level)
   {
     std::ifstream in(path);
     AssertThrow(in, ExcMessage("Entry <Checkpoint/Resume from>: cannot open the checkpoint <" + path + ">"));
@@ -79,6 +81,15 @@ namespace Membrane
         words >> name;
         if (name == "vertices")
           break;
+        if (name == "cells_per_side")
+          {
+            double written = 0;
+            words >> written;
+            AssertThrow(written == cells_per_side,
+                        ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> was written on a mesh with " +
+                                   std::to_string(int(written)) + " cells per side; this run has <Mesh/Cells per "
+                                   "side> = " + std::to_string(cells_per_side)));
+          }
         if (name != "refined")
           continue;
         std::size_t n = 0;
@@ -89,6 +100,10 @@ namespace Membrane
             int                level;
             double             x, y;
             cell >> level >> x >> y;
+            AssertThrow(level >= 0 && unsigned(level) < finest_level,
+                        ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> was written on a mesh refined "
+                                   "beyond what this run allows (check <Mesh/Cells per side> and <Mesh/Maximum "
+                                   "refinement level>)"));
             refined.emplace(level, x, y);
           }
       }
@@ -182,20 +197,55 @@ namespace Membrane
           }
         words >> scalars[name];
       }
+    const std::string name = "Entry <Checkpoint/Resume from>: <" + path + ">";
     std::map<Key, std::array<double, 5>> values;
-    for (std::size_t i = 0; i < n && std::getline(in, line); ++i)
+    for (std::size_t i = 0; i < n; ++i)
       {
+        AssertThrow(std::getline(in, line), ExcMessage(name + " is truncated (vertex " + std::to_string(i) + " of " +
+                                                       std::to_string(n) + ")"));
         std::istringstream    words(line);
         double                x, y;
         std::array<double, 5> v{};
         words >> x >> y >> v[0] >> v[1] >> v[2] >> v[3];
         if (has_areas)
           words >> v[4];
+        bool finite = !words.fail() && std::isfinite(x) && std::isfinite(y);
+        for (const double value : v)
+          finite = finite && std::isfinite(value);
+        AssertThrow(finite, ExcMessage(name + " is corrupt: vertex line " + std::to_string(i + 1) +
+                                         " is not finite numbers: <" + line + ">"));
         values[{x, y}] = v;
       }
-    AssertThrow(std::getline(in, line) && line == "statistics",
-                ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> is truncated"));
+    AssertThrow(std::getline(in, line) && line == "statistics", ExcMessage(name + " is truncated"));
     statistics_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    // The statistics must hold one complete, finite row per accepted step (0 included).
+    {
+      std::istringstream rows(statistics_text);
+      std::string        header, row;
+      std::getline(rows, header);
+      std::size_t n_columns = 0, n_rows = 0;
+      for (std::istringstream names(header.substr(header.empty() ? 0 : 1)); names >> row;)
+        ++n_columns;
+      while (std::getline(rows, row))
+        {
+          if (row.empty())
+            continue;
+          std::istringstream words(row);
+          std::size_t        count = 0;
+          for (std::string word; words >> word; ++count)
+            ;
+          AssertThrow(count == n_columns, ExcMessage(name + " is corrupt: statistics row " + std::to_string(n_rows + 1) +
+                                                      " has " + std::to_string(count) + " of " +
+                                                      std::to_string(n_columns) + " values"));
+          ++n_rows;
+        }
+      const auto step = scalars.find("step");
+      AssertThrow(header.rfind("#", 0) == 0 && step != scalars.end() && n_rows == std::size_t(step->second) + 1,
+                  ExcMessage(name + " is truncated: its statistics have " + std::to_string(n_rows) +
+                             " rows for step " + (step != scalars.end() ? std::to_string(int(step->second)) : "?")));
+    }
+    for (const auto &[scalar, value] : scalars)
+      AssertThrow(std::isfinite(value), ExcMessage(name + " is corrupt: <" + scalar + "> is not finite"));
 
     bool all_found = true;
     for_each_owned_vertex(surface, [&](const Point<spacedim> &x, const auto &vector_dofs, const auto dof) {
@@ -210,10 +260,19 @@ namespace Membrane
       phi[dof]             = it->second[3];
       reference_areas[dof] = it->second[4];
     });
+    // Every vertex of this mesh in the file, and no other: a finer mesh's file holds
+    // all vertices of a coarser one.
+    std::size_t local_vertices = 0;
+    std::set<types::global_dof_index> counted;
+    for_each_owned_vertex(surface, [&](const auto &, const auto &, const auto dof) {
+      local_vertices += counted.insert(dof).second;
+    });
     const MPI_Comm comm = surface.scalar_space().communicator();
-    AssertThrow(Utilities::MPI::min(all_found ? 1 : 0, comm) == 1,
-                ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> was written on another mesh (check "
-                           "<Mesh/Cells per side>)"));
+    AssertThrow(Utilities::MPI::min(all_found ? 1 : 0, comm) == 1 &&
+                  Utilities::MPI::sum(local_vertices, comm) == values.size(),
+                ExcMessage(name + " was written on another mesh (" + std::to_string(values.size()) +
+                           " vertices; this run has " + std::to_string(Utilities::MPI::sum(local_vertices, comm)) +
+                           "): check <Mesh/Cells per side> and the refinement entries"));
     displacement.compress(VectorOperation::insert);
     phi.compress(VectorOperation::insert);
     reference_areas.compress(VectorOperation::insert);

@@ -18,8 +18,11 @@ namespace Membrane
                        const Vector &reference_areas, const std::map<std::string, double> &scalars, const std::string &statistics_text);
 
   /// Refine the input mesh `triangulation` until it is the (adapted) mesh the
-  /// checkpoint `path` was written on; call before the spaces are set up.
-  void refine_like_checkpoint(const std::string &path, Triangulation &triangulation);
+  /// checkpoint `path` was written on; call before the spaces are set up. Throws
+  /// if the checkpoint's mesh had another number of cells per side, or cells finer
+  /// than `finest_level` (the level of the input mesh plus the refinement allowed).
+  void refine_like_checkpoint(const std::string &path, Triangulation &triangulation, unsigned int cells_per_side,
+                              unsigned int finest_level);
 
   /// Reads `path` into the displacement, phi and the reference vertex areas (owned
   /// vectors of the surface's spaces, constraints applied) and the statistics text;

@@ -1,0 +1,610 @@
+#!/usr/bin/python3
+"""Mesh-convergence study of the 7.3 budding setup: uniform meshes against local refinement.
+
+For each line tension sigma (default 630 and 1000) the 7.3 setup (experiments/7.3-budding.prm,
+end time 3.1 unless --end-time) runs on
+  - uniform meshes of 32, 48 and 64 cells per side (Mesh/Maximum refinement level = 0);
+  - the 32 x 32 input mesh with local refinement: level 1 with Interface cells per xi = 1.5,
+    level 2 with 3, level 3 with 6 (--levels chooses which; default 1,2).
+VTU output and checkpoints are off; every case runs in its own directory
+<output>/s<sigma>/<case>/ with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1.
+
+A case is finished when its summary.json exists: started again, the script skips finished
+cases and reruns the others from scratch (an interrupted, killed or timed-out case leaves no
+summary.json). A run that exits with code 2 (blow-up) writes its summary with "failed": true;
+it counts as finished and is listed as failed.
+
+Then it reads every case's summary.json and statistics.txt and writes
+docs/mesh-convergence.md (tables, conclusions drawn from the numbers) and the figures
+docs/images/mesh-convergence.png (final energy against number of cells) and
+docs/images/mesh-convergence-history.png (energy and cells against time).
+
+Usage: scripts/mesh_convergence.py [--workers 2] [--exe build/membrane-flow] [--levels 1,2]
+           [--sigmas 630,1000] [--end-time T] [--timeout SECONDS] [--report-only]
+"""
+import argparse
+import json
+import os
+import re
+import shlex
+import signal
+import subprocess
+import sys
+import threading
+import time
+from concurrent.futures import ThreadPoolExecutor, as_completed
+
+import numpy as np
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
+sys.path.insert(0, os.path.join(ROOT, 'scripts'))
+from membrane_workflow.statistics import load_statistics  # noqa: E402
+
+BASE = 'experiments/7.3-budding.prm'
+DEFAULT_OUTPUT = 'results/studies/mesh-convergence'
+UNIFORM = [32, 48, 64]
+CELLS_PER_XI = {1: 1.5, 2: 3.0, 3: 6.0}
+FILE_END_TIME = 3.1  # the base file's End time
+DOC = 'docs/mesh-convergence.md'
+FIGURE = 'docs/images/mesh-convergence.png'
+HISTORY = 'docs/images/mesh-convergence-history.png'
+
+
+# ----------------------------------------------------------------------------------------------
+# cases
+
+class Case:
+    def __init__(self, sigma, kind, value, output):
+        self.sigma, self.kind, self.value = sigma, kind, value  # kind 'uniform' (value N) / 'adaptive' (level)
+        self.name = f'uniform-{value}' if kind == 'uniform' else f'adaptive-L{value}'
+        self.dir = os.path.join(output, f's{fmt_sigma(sigma)}', self.name)
+
+    @property
+    def label(self):
+        if self.kind == 'uniform':
+            return f'uniform {self.value}'
+        return f'adaptive {self.value} ({CELLS_PER_XI[self.value]:g})'
+
+    def settings(self, end_time):
+        s = {'Material/Line tension': fmt_sigma(self.sigma),
+             'Output/Write VTU': 'false',
+             'Checkpoint/Interval': '0',
+             'Output/Directory': self.dir}
+        if end_time is not None:
+            s['Time stepping/End time'] = f'{end_time:g}'
+        if self.kind == 'uniform':
+            s['Mesh/Cells per side'] = str(self.value)
+            s['Mesh/Maximum refinement level'] = '0'
+        else:
+            s['Mesh/Cells per side'] = '32'
+            s['Mesh/Maximum refinement level'] = str(self.value)
+            s['Mesh/Interface cells per xi'] = f'{CELLS_PER_XI[self.value]:g}'
+        return s
+
+    def command(self, exe, end_time):
+        cmd = [exe, '--quiet']
+        for k, v in self.settings(end_time).items():
+            cmd += ['--set', f'{k}={v}']
+        return cmd + [BASE]
+
+    def finished(self):
+        return os.path.exists(os.path.join(self.dir, 'summary.json'))
+
+    def cost_rank(self):
+        """Rough expected cost, for running the slowest cases first."""
+        if self.kind == 'uniform':
+            return (self.value / 32) ** 2
+        return {1: 1.5, 2: 5.0, 3: 20.0}[self.value]
+
+
+def fmt_sigma(s):
+    return f'{s:g}'
+
+
+def make_cases(sigmas, levels, output):
+    cases = []
+    for s in sigmas:
+        cases += [Case(s, 'uniform', n, output) for n in UNIFORM]
+        cases += [Case(s, 'adaptive', lvl, output) for lvl in levels]
+    return cases
+
+
+# ----------------------------------------------------------------------------------------------
+# running
+
+class Runner:
+    def __init__(self, exe, end_time, timeout):
+        self.exe, self.end_time, self.timeout = exe, end_time, timeout
+        self.lock = threading.Lock()
+        self.running = set()
+        self.stopping = False
+
+    def run(self, case):
+        if case.finished():
+            return case, 'skipped'
+        if self.stopping:
+            return case, 'not started'
+        if os.path.isdir(case.dir):
+            for name in os.listdir(case.dir):  # an interrupted attempt starts over
+                path = os.path.join(case.dir, name)
+                if os.path.isfile(path):
+                    os.remove(path)
+        os.makedirs(case.dir, exist_ok=True)
+        command = case.command(self.exe, self.end_time)
+        env = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+        write_json(os.path.join(case.dir, 'case.json'),
+                   {'command': command, 'shell': ' '.join(shlex.quote(c) for c in command),
+                    'environment': 'OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1', 'cwd': ROOT})
+        start = time.time()
+        timed_out = False
+        with open(os.path.join(case.dir, 'log.txt'), 'w') as log:
+            process = subprocess.Popen(command, cwd=ROOT, env=env, stdout=log, stderr=subprocess.STDOUT,
+                                       stdin=subprocess.DEVNULL, start_new_session=True)
+            with self.lock:
+                self.running.add(process)
+            timer = None
+            if self.timeout:
+                def on_timeout():
+                    nonlocal timed_out
+                    timed_out = True
+                    terminate(process)
+                timer = threading.Timer(self.timeout, on_timeout)
+                timer.start()
+            # wait4 gives the CPU time of this child alone (cases run in parallel)
+            _, status, usage = os.wait4(process.pid, 0)
+            process.returncode = os.waitstatus_to_exitcode(status)
+            if timer:
+                timer.cancel()
+            with self.lock:
+                self.running.discard(process)
+        code = process.returncode
+        record = {'exit_code': code, 'wall_seconds': time.time() - start,
+                  'cpu_seconds': usage.ru_utime + usage.ru_stime, 'max_rss_kb': usage.ru_maxrss,
+                  'timed_out': timed_out, 'timeout_seconds': self.timeout}
+        write_json(os.path.join(case.dir, 'status.json'), record)
+        if self.stopping and not timed_out and code != 0:
+            summary = os.path.join(case.dir, 'summary.json')
+            if os.path.exists(summary):
+                os.remove(summary)
+            return case, 'interrupted'
+        if timed_out:
+            return case, f'timed out after {self.timeout:g} s'
+        return case, 'finished' if code == 0 else f'exit code {code}'
+
+    def stop(self, signum, frame):
+        self.stopping = True
+        with self.lock:
+            for p in list(self.running):
+                terminate(p)
+
+
+def terminate(process):
+    try:
+        os.killpg(process.pid, signal.SIGTERM)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
+def write_json(path, data):
+    tmp = path + '.tmp'
+    with open(tmp, 'w') as f:
+        json.dump(data, f, indent=1)
+        f.write('\n')
+    os.replace(tmp, path)
+
+
+def read_json(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def run_cases(cases, runner, workers):
+    todo = sorted(cases, key=lambda c: -c.cost_rank())
+    pending = [c for c in todo if not c.finished()]
+    print(f'{len(cases) - len(pending)} of {len(cases)} cases finished; running {len(pending)} '
+          f'with {workers} worker(s)', flush=True)
+    signal.signal(signal.SIGINT, runner.stop)
+    signal.signal(signal.SIGTERM, runner.stop)
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        futures = [pool.submit(runner.run, c) for c in pending]
+        for future in as_completed(futures):
+            case, status = future.result()
+            print(f'  {time.strftime("%H:%M:%S")} s{fmt_sigma(case.sigma)} {case.name}: {status}', flush=True)
+    return not runner.stopping
+
+
+# ----------------------------------------------------------------------------------------------
+# reading
+
+WARNING_RE = re.compile(r'warn|error|fail|nan|inf\b|refus|could not|cannot', re.IGNORECASE)
+
+
+def read_case(case):
+    summary = read_json(os.path.join(case.dir, 'summary.json'))
+    status = read_json(os.path.join(case.dir, 'status.json'))
+    stats = None
+    if os.path.exists(os.path.join(case.dir, 'statistics.txt')):
+        try:
+            stats = load_statistics(case.dir)
+        except Exception:  # noqa: BLE001 -- a half-written or empty file: report without history
+            stats = None
+    warnings = []
+    log = os.path.join(case.dir, 'log.txt')
+    if os.path.exists(log):
+        with open(log, errors='replace') as f:
+            for line in f:
+                line = line.strip()
+                if line and WARNING_RE.search(line) and not line.startswith('Results:'):
+                    warnings.append(line)
+    return {'case': case, 'summary': summary, 'status': status, 'stats': stats, 'warnings': warnings}
+
+
+def state(r):
+    """'ok', 'failed', 'timed out', 'killed', 'not run'."""
+    s, st = r['summary'], r['status']
+    if s is not None:
+        if s.get('failed') or (st and st.get('exit_code') not in (0, None)):
+            return 'failed'
+        return 'ok'
+    if st is None:
+        return 'not run'
+    if st.get('timed_out'):
+        return 'timed out'
+    return 'killed'
+
+
+def line_energy(s):
+    return s['gradient_energy'] + s['well_energy']
+
+
+# ----------------------------------------------------------------------------------------------
+# report
+
+def order_estimate(e32, e48, e64):
+    """p with (E32 - E48)/(E48 - E64) = (32^-p - 48^-p)/(48^-p - 64^-p), i.e. E = E* + C h^p with
+    h = 1/N; and the extrapolated E*. None when the differences change sign (not monotone)."""
+    d1, d2 = e32 - e48, e48 - e64
+    if d1 == 0 or d2 == 0 or (d1 > 0) != (d2 > 0):
+        return None
+    ratio = d1 / d2
+
+    def g(p):
+        return (32.0 ** -p - 48.0 ** -p) / (48.0 ** -p - 64.0 ** -p) - ratio
+    lo, hi = 1e-3, 20.0
+    if g(lo) * g(hi) > 0:  # ratio outside what any p in (0, 20] gives
+        return None
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if g(lo) * g(mid) <= 0:
+            hi = mid
+        else:
+            lo = mid
+    p = 0.5 * (lo + hi)
+    c = d2 / (48.0 ** -p - 64.0 ** -p)
+    return p, e64 - c * 64.0 ** -p
+
+
+def fmt(x, digits=4):
+    if x is None:
+        return '–'
+    if isinstance(x, float) and not np.isfinite(x):
+        return str(x)
+    return f'{x:.{digits}g}'
+
+
+def table(results, sigma):
+    rows = [r for r in results if r['case'].sigma == sigma]
+    ref = next((r for r in rows if r['case'].kind == 'uniform' and r['case'].value == max(UNIFORM)
+                and state(r) == 'ok'), None)
+    e_ref = ref['summary']['energy'] if ref else None
+    head = ('| mesh | final cells | final energy | line energy | bending energy | outcome | domain_protrusion '
+            '| neck_radius at stop | steps | rejected steps | wall time (s) | energy vs uniform 64 |')
+    lines = [head, '|' + '---|' * 12]
+    for r in rows:
+        c, s, st = r['case'], r['summary'], r['status']
+        k = state(r)
+        if s is None:
+            if k == 'timed out':
+                what = f'**timed out** (killed after {st["wall_seconds"]:.0f} s)'
+            elif k == 'killed':
+                what = f'**killed** (exit code {st.get("exit_code")}, no summary)'
+            else:
+                what = 'not run'
+            wall = f'{st["wall_seconds"]:.0f}' if st else '–'
+            lines.append(f'| {c.label} | – | – | – | – | {what} | – | – | – | – | {wall} | – |')
+            continue
+        outcome = s['outcome']
+        if k == 'failed':
+            outcome = f'**failed** ({s.get("stop_reason")}, exit {st.get("exit_code") if st else "?"}); ' \
+                      f'last state: {outcome}'
+        elif s.get('stop_reason') != 'end time':
+            outcome = f'{outcome} (stop: {s.get("stop_reason")} at t = {s.get("time"):.3g})'
+        rel = '–'
+        if e_ref is not None:
+            rel = 'reference' if r is ref else f'{100 * (s["energy"] - e_ref) / e_ref:+.2f} %'
+        lines.append(
+            f'| {c.label} | {s["cells"]} | {s["energy"]:.4f} | {line_energy(s):.4f} | {s["bending_energy"]:.4f} '
+            f'| {outcome} | {s["domain_protrusion"]:.3f} | {s["neck_radius"]:.4f} | {s["steps"]} '
+            f'| {s["rejected_steps"]} | {s["wall_seconds"]:.0f} | {rel} |')
+    return '\n'.join(lines)
+
+
+def conclusions(results, sigma, levels):
+    rows = {(r['case'].kind, r['case'].value): r for r in results if r['case'].sigma == sigma}
+    ok = {k: r for k, r in rows.items() if state(r) == 'ok'}
+    out = []
+    ref = ok.get(('uniform', max(UNIFORM)))
+    # adaptive at its finest level against uniform 64
+    finest = max(levels) if levels else None
+    if finest is not None:
+        a = rows.get(('adaptive', finest))
+        if a is None or state(a) != 'ok':
+            out.append(f'Adaptive level {finest}: {state(a) if a else "not run"}, so no comparison with the '
+                       f'finest uniform mesh.')
+        elif ref is None:
+            out.append(f'The uniform 64 run is missing or failed, so adaptive level {finest} has no reference.')
+        else:
+            ea, er = a['summary']['energy'], ref['summary']['energy']
+            rel = (ea - er) / er
+            wa, wr = a['summary']['wall_seconds'], ref['summary']['wall_seconds']
+            ca, cr = (a['status'] or {}).get('cpu_seconds'), (ref['status'] or {}).get('cpu_seconds')
+            cpu = f' (CPU time {ca:.0f} s against {cr:.0f} s, {ca / cr:.2f}x)' if ca and cr else ''
+            verdict = 'agrees with' if abs(rel) <= 0.01 else 'does **not** agree with'
+            out.append(f'Adaptive level {finest} ({CELLS_PER_XI[finest]:g} cells per xi, {a["summary"]["cells"]} '
+                       f'final cells) {verdict} uniform 64 (4096 cells) within 1 %: final energy {ea:.4f} against '
+                       f'{er:.4f}, a difference of {100 * rel:+.2f} %. Its wall time is {wa:.0f} s against '
+                       f'{wr:.0f} s, {wa / wr:.2f} times that of uniform 64{cpu}.')
+            for lvl in sorted(levels):
+                if lvl == finest:
+                    continue
+                b = ok.get(('adaptive', lvl))
+                if b:
+                    eb = b['summary']['energy']
+                    out.append(f'Adaptive level {lvl} ({CELLS_PER_XI[lvl]:g} cells per xi): {eb:.4f}, '
+                               f'{100 * (eb - er) / er:+.2f} % from uniform 64 at '
+                               f'{b["summary"]["wall_seconds"] / wr:.2f} times its wall time.')
+    # uniform convergence
+    us = [ok.get(('uniform', n)) for n in UNIFORM]
+    if all(us):
+        e = [u['summary']['energy'] for u in us]
+        d1, d2 = e[0] - e[1], e[1] - e[2]
+        seq = ', '.join(f'{x:.4f}' for x in e)
+        est = order_estimate(*e)
+        if est is None:
+            out.append(f'Uniform energies (32, 48, 64): {seq}. The differences 32->48 ({-d1:+.4f}) and 48->64 '
+                       f'({-d2:+.4f}) are not monotone in a way a power law fits, so no order is estimated; '
+                       f'the spread between 48 and 64 is {100 * abs(d2) / abs(e[2]):.2f} % of the energy.')
+        else:
+            p, einf = est
+            out.append(f'Uniform energies (32, 48, 64): {seq}; changes 32->48 {-d1:+.4f}, 48->64 {-d2:+.4f} '
+                       f'(monotone). Fitting E = E* + C h^p to the three gives an observed order p = {p:.2f} and '
+                       f'an extrapolated E* = {einf:.4f}; uniform 64 is then {100 * (e[2] - einf) / einf:+.2f} % '
+                       f'from E*. Three points determine p exactly, so this is an estimate, not a test of the '
+                       f'asymptotic range.')
+            for lvl in sorted(levels):
+                b = ok.get(('adaptive', lvl))
+                if b:
+                    eb = b['summary']['energy']
+                    out.append(f'Adaptive level {lvl} is {100 * (eb - einf) / einf:+.2f} % from that E*.')
+    else:
+        out.append('Not every uniform run finished, so no order of convergence is estimated.')
+    # outcome and protrusion
+    done = [r for r in rows.values() if r['summary'] is not None]
+    if done:
+        outcomes = sorted({r['summary']['outcome'] for r in done})
+        prot = [r['summary']['domain_protrusion'] for r in done]
+        neck = [r['summary']['neck_radius'] for r in done]
+        if len(outcomes) == 1:
+            out.append(f'The outcome is "{outcomes[0]}" on every mesh.')
+        else:
+            per = '; '.join(f'{r["case"].label}: {r["summary"]["outcome"]}' for r in done)
+            out.append(f'The outcome **changes with resolution**: {per}.')
+        out.append(f'domain_protrusion ranges from {min(prot):.3f} to {max(prot):.3f} across the meshes, '
+                   f'neck_radius at stop from {min(neck):.4f} to {max(neck):.4f}.')
+        stops = sorted({r['summary'].get('stop_reason') for r in done})
+        if stops != ['end time']:
+            out.append('Stop reasons: ' + '; '.join(f'{r["case"].label}: {r["summary"].get("stop_reason")} at t = '
+                                                    f'{r["summary"].get("time"):.3g}' for r in done) + '.')
+    # adaptation energy jumps
+    for lvl in sorted(levels):
+        b = rows.get(('adaptive', lvl))
+        if b and b['summary'] is not None:
+            s = b['summary']
+            jump = s.get('adaptation_energy_jump', 0.0)
+            text = (f'Adaptive level {lvl}: {s.get("adaptations")} mesh adaptations with a total energy jump '
+                    f'(adaptation_energy_jump) of {jump:+.4f}, {100 * jump / s["energy"]:+.2f} % of its final '
+                    f'energy')
+            st = b['stats']
+            if st is not None and 'adaptation_energy_jump' in st and len(st['time']) > 1:
+                cum = st['adaptation_energy_jump']
+                inc = np.diff(cum)
+                idx = np.nonzero(inc)[0]
+                if len(idx):
+                    big = idx[np.argsort(-np.abs(inc[idx]))][:3]
+                    first = cum[st['time'] <= 0.05][-1] if np.any(st['time'] <= 0.05) else 0.0
+                    text += (f'; {fmt(first)} of it by t = 0.05 (the initial sharpening of phi); largest single '
+                             f'jumps ' + ', '.join(f'{inc[i]:+.3g} at t = {st["time"][i + 1]:.3g}' for i in big))
+                    drop = -np.diff(st['energy'])  # energy decrease per step, jumps included
+                    text += (f'. For scale: the energy falls by {st["energy"][0] - st["energy"][-1]:.3g} over the '
+                             f'run')
+            out.append(text + '.')
+    return out
+
+
+def plot(results, sigmas, levels):
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    colors = {s: c for s, c in zip(sigmas, ['tab:blue', 'tab:red', 'tab:green', 'tab:purple'])}
+    markers = {1: 's', 2: 'D', 3: '^'}
+    fig, ax = plt.subplots(figsize=(7, 4.8))
+    for s in sigmas:
+        us = [r for r in results if r['case'].sigma == s and r['case'].kind == 'uniform' and state(r) == 'ok']
+        if us:
+            ax.plot([r['summary']['cells'] for r in us], [r['summary']['energy'] for r in us], 'o-', color=colors[s],
+                    label=f'sigma = {fmt_sigma(s)}, uniform 32/48/64')
+        for r in results:
+            c = r['case']
+            if c.sigma == s and c.kind == 'adaptive' and state(r) == 'ok':
+                ax.plot([r['summary']['cells']], [r['summary']['energy']], markers.get(c.value, 'x'),
+                        color=colors[s], markersize=9, markerfacecolor='none', markeredgewidth=1.8,
+                        label=f'sigma = {fmt_sigma(s)}, adaptive level {c.value} ({CELLS_PER_XI[c.value]:g}/xi)')
+    ax.set_xscale('log')
+    ax.set_xlabel('cells at the end of the run')
+    ax.set_ylabel('final energy')
+    ax.set_title('7.3 budding setup: final energy against mesh size')
+    ax.grid(True, which='both', alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(ROOT, FIGURE), dpi=110)
+    plt.close(fig)
+
+    fig, axes = plt.subplots(len(sigmas), 2, figsize=(11, 3.6 * len(sigmas)), squeeze=False)
+    styles = {('uniform', 32): ':', ('uniform', 48): '--', ('uniform', 64): '-'}
+    for i, s in enumerate(sigmas):
+        for r in results:
+            c, st = r['case'], r['stats']
+            if c.sigma != s or st is None or len(st['time']) < 2:
+                continue
+            ls = styles.get((c.kind, c.value), '-')
+            lw = 1.2 if c.kind == 'uniform' else 1.8
+            color = 'k' if c.kind == 'uniform' else {1: 'tab:orange', 2: 'tab:green', 3: 'tab:purple'}[c.value]
+            axes[i, 0].plot(st['time'], st['energy'], ls, color=color, lw=lw, label=c.label)
+            cells = st['cells'] if 'cells' in st else np.full_like(st['time'], c.value ** 2)
+            axes[i, 1].plot(st['time'], cells, ls, color=color, lw=lw, label=c.label)
+        axes[i, 0].set_ylabel('energy')
+        axes[i, 0].set_yscale('log')
+        axes[i, 1].set_ylabel('cells')
+        axes[i, 0].set_title(f'sigma = {fmt_sigma(s)}: energy')
+        axes[i, 1].set_title(f'sigma = {fmt_sigma(s)}: cells')
+        for ax in axes[i]:
+            ax.set_xlabel('t')
+            ax.grid(True, alpha=0.3)
+            ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(ROOT, HISTORY), dpi=90)
+    plt.close(fig)
+
+
+def write_report(results, sigmas, levels, command, end_time, exe):
+    t_end = FILE_END_TIME if end_time is None else end_time
+    parts = ['# Mesh convergence: uniform meshes against local refinement', '',
+             'The 7.3 budding setup ([experiments/7.3-budding.prm](../experiments/7.3-budding.prm)) at line tension '
+             + ' and '.join(f'sigma = {fmt_sigma(s)}' for s in sigmas) +
+             f', run to t = {t_end:g}, on uniform meshes of 32, 48 and 64 cells per side and on the 32 x 32 '
+             'input mesh with local refinement (`Mesh/Maximum refinement level` L with `Mesh/Interface cells per xi`'
+             ' ' + ', '.join(f'{CELLS_PER_XI[l]:g} for L = {l}' for l in sorted(levels)) +
+             '; the other refinement entries at their defaults: adaptation every 10 accepted steps, curvature '
+             'resolution 0.3). VTU output and checkpoints are off; one case per core.',
+             '', 'Regenerate everything (runs only the cases without a `summary.json`, then rewrites this page and '
+             'its figures):', '', '```sh', command, '```', '']
+    if end_time is not None and end_time != FILE_END_TIME:
+        parts += [f'**Shortened study:** every case, uniform and adaptive, ends at t = {end_time:g} instead of the '
+                  f'file\'s {FILE_END_TIME:g}.', '']
+    parts += ['Each case runs `membrane-flow --quiet --set "Material/Line tension=SIGMA" --set "Output/Write VTU=false"'
+              ' --set "Checkpoint/Interval=0" --set "Output/Directory=results/studies/mesh-convergence/sSIGMA/CASE" '
+              '[mesh entries] experiments/7.3-budding.prm` with `OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1`. '
+              'Columns: line energy = gradient_energy + well_energy; final cells = `cells` at the end '
+              '(the adaptive meshes change every 10 steps); wall time = the run\'s own `wall_seconds`, measured while '
+              'two cases shared the machine\'s 2 cores with other work, so it is indicative only (the CPU time of '
+              'each case is listed further down); the last column is the final energy relative to the uniform 64 '
+              'run of the same sigma.', '']
+    for s in sigmas:
+        parts += [f'## sigma = {fmt_sigma(s)}', '', table(results, s), '']
+        parts += ['Findings (computed from the table):', '']
+        parts += [f'- {t}' for t in conclusions(results, s, levels)]
+        parts += ['']
+    parts += [f'![final energy against cells]({os.path.relpath(FIGURE, "docs")})', '',
+              'Final energy against the number of cells at the end of the run (log scale). Lines: uniform 32, 48, 64; '
+              'open markers: adaptive runs.', '',
+              f'![energy and cells against time]({os.path.relpath(HISTORY, "docs")})', '',
+              'Energy (log scale) and number of cells against time for every case.', '']
+    # costs
+    parts += ['## Cost', '', '| sigma | mesh | exit code | wall (s, own clock) | CPU (s) | peak memory (MB) | '
+              'adaptations | adaptation energy jump |', '|---|---|---|---|---|---|---|---|']
+    total_cpu = 0.0
+    for r in results:
+        c, s, st = r['case'], r['summary'], r['status']
+        cpu = st.get('cpu_seconds') if st else None
+        total_cpu += cpu or 0.0
+        parts.append(f'| {fmt_sigma(c.sigma)} | {c.label} | {st.get("exit_code") if st else "–"} '
+                     f'| {fmt(s["wall_seconds"], 4) if s else (fmt(st["wall_seconds"], 4) if st else "–")} '
+                     f'| {fmt(cpu, 4)} | {fmt(st["max_rss_kb"] / 1024, 4) if st else "–"} '
+                     f'| {s.get("adaptations", 0) if s else "–"} '
+                     f'| {fmt(s.get("adaptation_energy_jump"), 4) if s else "–"} |')
+    parts += ['', f'Total CPU time of the {sum(1 for r in results if r["status"])} cases: {total_cpu:.0f} s '
+              f'({total_cpu / 3600:.2f} h).', '']
+    # warnings
+    warn = [(r['case'], w) for r in results for w in r['warnings']]
+    parts += ['## Messages from the runs', '']
+    if warn:
+        parts += ['Lines of the runs\' logs that mention a warning, error or failure:', '']
+        parts += [f'- s{fmt_sigma(c.sigma)} {c.name}: `{w}`' for c, w in warn[:40]]
+        if len(warn) > 40:
+            parts.append(f'- ... and {len(warn) - 40} more')
+    else:
+        parts.append('No run printed a warning or error (the logs hold only the start-up and final lines).')
+    parts += ['', f'Binary: `{exe}`; code version of the runs: ' +
+              ', '.join(sorted({r['summary'].get('code_version', '?') for r in results if r['summary']})) + '.', '']
+    with open(os.path.join(ROOT, DOC) + '.tmp', 'w') as f:
+        f.write('\n'.join(parts))
+    os.replace(os.path.join(ROOT, DOC) + '.tmp', os.path.join(ROOT, DOC))
+
+
+# ----------------------------------------------------------------------------------------------
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('--workers', type=int, default=2, help='cases run at the same time (default 2)')
+    parser.add_argument('--exe', default=os.path.join(ROOT, 'build', 'membrane-flow'))
+    parser.add_argument('--levels', default='1,2', help='adaptive refinement levels, from 1,2,3 (default 1,2)')
+    parser.add_argument('--sigmas', default='630,1000', help='line tensions (default 630,1000)')
+    parser.add_argument('--end-time', type=float, default=None,
+                        help=f'End time of every case (default: the file\'s {FILE_END_TIME:g})')
+    parser.add_argument('--output', default=DEFAULT_OUTPUT, help=f'run directory (default {DEFAULT_OUTPUT})')
+    parser.add_argument('--timeout', type=float, default=7200,
+                        help='wall seconds after which a case is killed and reported as timed out (0: none; '
+                             'default 7200)')
+    parser.add_argument('--report-only', action='store_true', help='run nothing; rewrite the report from what exists')
+    args = parser.parse_args()
+    levels = sorted({int(x) for x in args.levels.split(',') if x.strip()})
+    if any(l not in CELLS_PER_XI for l in levels):
+        parser.error('--levels takes levels from 1, 2, 3')
+    sigmas = [float(x) for x in args.sigmas.split(',')]
+    if args.workers < 1:
+        parser.error('--workers must be at least 1')
+    exe = os.path.abspath(args.exe)
+    output = args.output if os.path.isabs(args.output) else os.path.relpath(os.path.join(ROOT, args.output), ROOT)
+    if args.end_time is not None and args.end_time != FILE_END_TIME and args.output == DEFAULT_OUTPUT:
+        output = os.path.join(DEFAULT_OUTPUT, f'end-{args.end_time:g}')
+    cases = make_cases(sigmas, levels, output)
+
+    command = 'scripts/mesh_convergence.py'
+    if args.workers != 2:
+        command += f' --workers {args.workers}'
+    command += f' --exe {args.exe}' if args.exe != parser.get_default('exe') else ''
+    command += f' --levels {",".join(map(str, levels))}'
+    if args.sigmas != parser.get_default('sigmas'):
+        command += f' --sigmas {args.sigmas}'
+    if args.end_time is not None:
+        command += f' --end-time {args.end_time:g}'
+    completed = True
+    if not args.report_only:
+        if not os.access(exe, os.X_OK):
+            print(f'mesh_convergence.py: error: {exe} is not an executable', file=sys.stderr)
+            return 1
+        completed = run_cases(cases, Runner(exe, args.end_time, args.timeout), args.workers)
+    results = [read_case(c) for c in cases]
+    plot(results, sigmas, levels)
+    write_report(results, sigmas, levels, command, args.end_time, exe)
+    print(f'wrote {DOC}, {FIGURE}, {HISTORY}')
+    if not completed:
+        return 130
+    return 2 if any(state(r) != 'ok' for r in results) else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
