@@ -93,6 +93,12 @@ namespace Membrane
                         "The run stops (keeping its last good state) when tau would fall below this.");
       prm.declare_entry("Maximum time step", "1e-2", Patterns::Double(1e-300, max_double), "Upper bound of tau.");
       prm.declare_entry("Growth factor", "1.25", Patterns::Double(1, 10), "tau <- factor tau after an easy step.");
+      prm.declare_entry("Accuracy tolerance", "0", Patterns::Double(0, 1),
+                        "Accuracy-based control of tau (0: off). Each step's local error is estimated from the "
+                        "change of the velocities: 1/2 max |W - (tau/tau_prev) W_prev| in cell sizes for the shape "
+                        "and 1/2 max |dphi - (tau/tau_prev) dphi_prev| for phi. A step whose estimate exceeds this "
+                        "tolerance is rejected; otherwise tau <- tau min(Growth factor, 0.9 sqrt(tolerance / "
+                        "estimate)), within the other rules and bounds.");
       prm.declare_entry("Energy tolerance", "1e-10", Patterns::Double(0, 1),
                         "Largest accepted relative rise of the free energy in one step (round-off allowance).");
       prm.declare_entry("Equilibrium rate", "0", Patterns::Double(0, max_double),
@@ -250,6 +256,7 @@ namespace Membrane
     min_time_step    = prm.get_double("Minimum time step");
     max_time_step    = prm.get_double("Maximum time step");
     growth_factor    = prm.get_double("Growth factor");
+    accuracy_tolerance = prm.get_double("Accuracy tolerance");
     energy_tolerance = prm.get_double("Energy tolerance");
     equilibrium_rate = prm.get_double("Equilibrium rate");
     min_cell_quality = prm.get_double("Minimum cell quality");

@@ -38,7 +38,8 @@ namespace Membrane
     , surface(triangulation, true)
     , cahn_hilliard(triangulation, true)
     , shape_solver(triangulation, true)
-    , step_control({parameters.adaptive, parameters.min_time_step, parameters.max_time_step, parameters.growth_factor},
+    , step_control({parameters.adaptive, parameters.min_time_step, parameters.max_time_step, parameters.growth_factor,
+                    parameters.accuracy_tolerance},
                    parameters.time_step)
   {}
 
@@ -196,7 +197,8 @@ namespace Membrane
     };
     if (!apply(update))
       return false;
-    max_increment = update.increment.linfty_norm();
+    max_increment  = update.increment.linfty_norm();
+    step_increment = update.increment;
     Vector gamma  = update.pressure;
     // The linearized constraint leaves an O(|grad W|^2) area error in every step.
     // Projecting it out within the step (same operator, one back-substitution)
@@ -216,6 +218,7 @@ namespace Membrane
             if (!apply(correction))
               return false;
             gamma += correction.pressure;
+            step_increment += correction.increment;
             ++area_projections;
           }
       }
@@ -300,6 +303,13 @@ namespace Membrane
         if (!std::isfinite(phi_new.l2_norm()) || phi_new.linfty_norm() > 10)
           return restore("phi became non-finite or |phi| > 10");
         chemical_potential = potential;
+        step_phi_change    = phi_new;
+        {
+          Vector old = surface.scalar_space().make_owned();
+          old        = phi;
+          step_phi_change -= old;
+        }
+        step_increment = surface.vector_space().make_owned();
 
         max_increment    = 0;
         remap_correction = 0;
@@ -326,7 +336,27 @@ namespace Membrane
     const double rise = energy.total() - before.energy.total();
     if (rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
       return restore("the energy would rise by " + format(rise));
+    error_estimate = step_control.controls_accuracy() && previous_tau > 0 ? estimate_error(tau_trial) : -1;
+    if (error_estimate > 1)
+      {
+        rejection_factor = TimeStepController::shrink_factor(error_estimate);
+        return restore("the estimated local error is " + format(error_estimate) +
+                       " x <Time stepping/Accuracy tolerance>");
+      }
     return {};
+  }
+
+  double Simulator::estimate_error(const double tau) const
+  {
+    // First-order steps: the local error is about half the change of the increment
+    // against the previous velocity, tau^2/2 |dV/dt|. Shape in cells, phi absolute.
+    const double ratio     = tau / previous_tau;
+    const double cell_size = 1.0 / (parameters.cells_per_side << finest_level());
+    Vector       shape     = step_increment;
+    shape.add(-ratio, previous_increment);
+    Vector phase = step_phi_change;
+    phase.add(-ratio, previous_phi_change);
+    return 0.5 * std::max(shape.linfty_norm() / cell_size, phase.linfty_norm()) / step_control.accuracy();
   }
 
   void Simulator::record_statistics(const double tau_used)
@@ -368,6 +398,7 @@ namespace Membrane
     stats.set("grid_control_skipped", grid_control_skipped);
     stats.set("area_error", area_error);
     stats.set("shape_mass_correction", shape_mass_correction);
+    stats.set("error_estimate", error_estimate);
     stats.set("area_projections", area_projections);
     stats.set("solver_iterations", solver_iterations);
     stats.set("cells", triangulation.n_global_active_cells());
@@ -493,11 +524,12 @@ namespace Membrane
           }
         const double    trial         = std::min(step_control.tau(), parameters.end_time - time);
         const double    energy_before = energy.total();
+        rejection_factor              = 0.5;
         const Rejection why           = try_step(trial);
         if (!why.empty())
           {
             ++rejected_steps;
-            if (!step_control.reject(trial))
+            if (!step_control.reject(trial, rejection_factor))
               {
                 result.stop_reason = "step failed at t = " + format(time) + ": " + why +
                                      (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>"
@@ -524,9 +556,13 @@ namespace Membrane
         grid_control_skipped += grid_move_skipped;
         record_statistics(trial);
         const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
-        step_control.accept(trial, max_increment, 1.0 / (parameters.cells_per_side << finest_level()), change);
-        if (parameters.adaptivity.enabled() && step % parameters.adaptivity.interval == 0)
-          adapt_mesh();
+        step_control.accept(trial, max_increment, 1.0 / (parameters.cells_per_side << finest_level()), change,
+                            error_estimate);
+        previous_increment  = step_increment;
+        previous_phi_change = step_phi_change;
+        previous_tau        = trial;
+        if (parameters.adaptivity.enabled() && step % parameters.adaptivity.interval == 0 && adapt_mesh())
+          previous_tau = 0; // the increments live on the old mesh
 
         const bool output_due = time >= next_output_time * (1 - 1e-12);
         if (output_due || finished())

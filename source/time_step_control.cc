@@ -1,6 +1,7 @@
 #include <membrane/time_step_control.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace Membrane
 {
@@ -22,22 +23,31 @@ namespace Membrane
            current < 1e-3 * limits.maximum;
   }
 
-  bool TimeStepController::reject(const double trial)
+  double TimeStepController::shrink_factor(const double error)
+  {
+    return std::clamp(0.9 / std::sqrt(error), 0.2, 0.5);
+  }
+
+  bool TimeStepController::reject(const double trial, const double factor)
   {
     record(true);
-    current = 0.5 * trial;
+    current = factor * trial;
     return limits.adaptive && current >= limits.minimum;
   }
 
   void TimeStepController::accept(const double trial, const double max_increment, const double cell_size,
-                                  const double energy_change)
+                                  const double energy_change, const double error)
   {
     record(false);
     if (!limits.adaptive || trial != current)
       return;
+    double next = current;
     if (max_increment < 0.2 * cell_size && energy_change < 1e-2)
-      current = std::min(limits.growth * current, limits.maximum);
+      next = std::min(limits.growth * current, limits.maximum);
     else if (max_increment > 0.5 * cell_size)
-      current = std::max(0.7 * current, limits.minimum);
+      next = std::max(0.7 * current, limits.minimum);
+    if (controls_accuracy() && error >= 0)
+      next = std::min(next, std::max(limits.minimum, current * std::min(limits.growth, 0.9 / std::sqrt(std::max(error, 1e-12)))));
+    current = next;
   }
 } // namespace Membrane

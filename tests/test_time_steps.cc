@@ -68,3 +68,30 @@ TEST(TimeSteps, StalledWhenHalfOfRecentStepsFailAtTinyTau)
     }
   EXPECT_FALSE(large.stalled());
 }
+
+// Accuracy control: the error estimate (relative to the tolerance) caps the growth by
+// 0.9 / sqrt(estimate), and a rejected step retries with that factor, between 0.2 and 0.5.
+TEST(TimeSteps, ErrorEstimateSetsTheStep)
+{
+  TimeStepController control(TimeStepLimits{true, 1e-9, 1e-2, 1.25, 1e-2}, 1e-3);
+  ASSERT_TRUE(control.controls_accuracy());
+  control.accept(1e-3, 0.0, 1.0 / 32, 1e-4, 0.01); // far below tolerance: the growth factor limits
+  EXPECT_DOUBLE_EQ(control.tau(), 1.25e-3);
+  control.accept(1.25e-3, 0.0, 1.0 / 32, 1e-4, 0.81); // 0.9 / sqrt(0.81) = 1: keep
+  EXPECT_DOUBLE_EQ(control.tau(), 1.25e-3);
+  control.accept(1.25e-3, 0.0, 1.0 / 32, 1e-4, 0.9 * 0.9 / 0.64); // 0.9 / sqrt(.) = 0.8
+  EXPECT_NEAR(control.tau(), 1e-3, 1e-15);
+  control.accept(1e-3, 0.0, 1.0 / 32, 1e-4, -1); // no estimate: the rules alone
+  EXPECT_DOUBLE_EQ(control.tau(), 1.25e-3);
+
+  EXPECT_DOUBLE_EQ(TimeStepController::shrink_factor(2.0), 0.5);          // 0.64 capped at 0.5
+  EXPECT_NEAR(TimeStepController::shrink_factor(9.0), 0.3, 1e-15);        // 0.9 / 3
+  EXPECT_DOUBLE_EQ(TimeStepController::shrink_factor(1e4), 0.2);          // floor
+  EXPECT_TRUE(control.reject(1.25e-3, TimeStepController::shrink_factor(9.0)));
+  EXPECT_NEAR(control.tau(), 3.75e-4, 1e-15);
+
+  TimeStepController without(TimeStepLimits{true, 1e-9, 1e-2, 1.25}, 1e-3);
+  EXPECT_FALSE(without.controls_accuracy());
+  without.accept(1e-3, 0.0, 1.0 / 32, 1e-4, 100.0); // estimates are ignored without a tolerance
+  EXPECT_DOUBLE_EQ(without.tau(), 1.25e-3);
+}

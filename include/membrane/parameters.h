@@ -34,7 +34,7 @@ namespace Membrane
     double       end_time = 0.01, time_step = 1e-4;
     unsigned int max_steps = 1000000;
     bool         adaptive = true;
-    double       min_time_step = 1e-9, max_time_step = 1e-2, growth_factor = 1.25;
+    double       min_time_step = 1e-9, max_time_step = 1e-2, growth_factor = 1.25, accuracy_tolerance = 0;
     double       energy_tolerance = 1e-10, equilibrium_rate = 0, min_cell_quality = 0.1;
     // Shape
     bool         evolve_shape = true;

@@ -81,6 +81,8 @@ namespace Membrane
     void      resume();
     void      warn_if_unresolved() const;
     Rejection try_step(double tau);
+    /// The local error estimate of the trial step relative to the accuracy tolerance.
+    double    estimate_error(double tau) const;
     /// Shape step and its area projections; false if a solve gave non-finite values.
     bool      move_shape(double tau, const Vector &phi_new);
     /// Grid control of the Lagrangian state X~, kept if F^{m+1} <= F^m.
@@ -130,6 +132,12 @@ namespace Membrane
     /// Observables of the last accepted step, for the statistics.
     double max_increment = 0, remap_correction = 0, cell_quality = 1, area_error = 0, shape_mass_correction = 0;
     unsigned int area_projections = 0;
+    /// Accuracy control: the physical increments of the trial step and of the last
+    /// accepted one (owned), the tau of that one (0: none, e.g. after an adaptation),
+    /// the trial's error estimate relative to the tolerance, and the factor for tau
+    /// after a rejection.
+    Vector step_increment, step_phi_change, previous_increment, previous_phi_change;
+    double previous_tau = 0, error_estimate = -1, rejection_factor = 0.5;
     /// Mesh adaptation: the level of the input mesh, the number of adaptations and the
     /// sum of their energy changes (not steps of the gradient flow).
     unsigned int base_level = 0, adaptations = 0;

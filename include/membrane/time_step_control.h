@@ -8,6 +8,10 @@
 //    after an easy step (vertices moved less than 0.2 cells and the energy
 //    changed less than 1 %), shrinks by 0.7 after a hard one (more than half a cell).
 // Steps cut short to land on the end time leave tau unchanged.
+// With an accuracy tolerance, the step's error estimate (relative to the tolerance:
+// 1 = at tolerance) also sets tau: tau <- tau min(growth, 0.9 / sqrt(estimate)),
+// never above what the rules above allow; a step above tolerance is rejected by the
+// simulator and retried with tau max(0.2, 0.9 / sqrt(estimate)).
 // The controller is stalled when half of the last 20 attempted steps were rejected
 // and tau is below 1e-3 of its maximum: the solution is approaching a singularity
 // (a pinching neck) that steps of any size cannot pass, and the run should stop.
@@ -22,6 +26,7 @@ namespace Membrane
     double minimum  = 1e-9;
     double maximum  = 1e-2;
     double growth   = 1.25;
+    double accuracy = 0; ///< tolerance of the error estimate (0: no accuracy control)
   };
 
   class TimeStepController
@@ -35,12 +40,21 @@ namespace Membrane
     double tau() const { return current; }
     void   set_tau(double tau) { current = tau; }
 
-    /// After a rejected trial step; false if the run cannot continue.
-    bool reject(double trial);
+    /// After a rejected trial step; false if the run cannot continue. `factor`
+    /// shrinks tau (0.5 unless the step's error estimate said otherwise).
+    bool reject(double trial, double factor = 0.5);
 
     /// After an accepted trial step; `max_increment` is the largest vertex move,
-    /// `cell_size` the reference cell size, `energy_change` |Delta F| / |F|.
-    void accept(double trial, double max_increment, double cell_size, double energy_change);
+    /// `cell_size` the reference cell size, `energy_change` |Delta F| / |F|, and
+    /// `error` the error estimate relative to the tolerance (negative: none).
+    void accept(double trial, double max_increment, double cell_size, double energy_change, double error = -1);
+
+    /// The factor by which tau shrinks after a step whose relative error estimate
+    /// `error` exceeded 1.
+    static double shrink_factor(double error);
+
+    bool controls_accuracy() const { return limits.adaptive && limits.accuracy > 0; }
+    double accuracy() const { return limits.accuracy; }
 
     /// Half of the last 20 attempts rejected at tau < 1e-3 maximum.
     bool stalled() const;
