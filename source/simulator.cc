@@ -117,6 +117,8 @@ namespace Membrane
     initial_area       = scalars.at("initial_area");
     initial_mass       = scalars.at("initial_mass");
     next_output_time   = scalars.at("next_output_time");
+    if (scalars.count("wall_seconds"))
+      earlier_wall_seconds = scalars.at("wall_seconds"); // the run's wall time counts all its segments
     if (scalars.count("adaptations"))
       {
         adaptations            = static_cast<unsigned int>(scalars.at("adaptations"));
@@ -126,6 +128,18 @@ namespace Membrane
     cell_quality       = min_corner_sine(surface, geometry.normal);
     output->resume(time);
     pcout << "Resumed from " << parameters.resume_from << " at step " << step << ", t = " << time << '\n';
+    // A continuation with changed parameters is legitimate (e.g. a line-tension
+    // branch); it is said and recorded in run_info.json.
+    for (const auto &change : changed_parameters(checkpoint_parameters(parameters.resume_from), options.parameter_text))
+      if (change.rfind("Checkpoint/Resume from", 0) != 0)
+        changed_on_resume.push_back(change);
+    if (!changed_on_resume.empty())
+      {
+        pcout << "Resumed with changed parameters:";
+        for (const auto &change : changed_on_resume)
+          pcout << "\n  " << change;
+        pcout << '\n';
+      }
   }
 
   void Simulator::warn_if_unresolved() const
@@ -406,7 +420,7 @@ namespace Membrane
     stats.set("refinement_level", finest_level());
     stats.set("adaptations", adaptations);
     stats.set("adaptation_energy_jump", adaptation_energy_jump);
-    stats.set("wall_seconds", wall.wall_time());
+    stats.set("wall_seconds", earlier_wall_seconds + wall.wall_time());
     stats.end_row();
   }
 
@@ -437,8 +451,9 @@ namespace Membrane
                      {"next_output_time", next_output_time},
                      {"adaptations", adaptations},
                      {"cells_per_side", parameters.cells_per_side},
+                     {"wall_seconds", earlier_wall_seconds + wall.wall_time()},
                      {"adaptation_energy_jump", adaptation_energy_jump}},
-                    stats.to_text());
+                    stats.to_text(), options.parameter_text);
   }
 
   void Simulator::write_run_info() const
@@ -601,7 +616,7 @@ namespace Membrane
     if (root)
       stats.write(parameters.output_directory + "/statistics.txt");
     result.outcome = classify_outcome(bud, parameters.outcome, result.stop_reason.rfind("pinch-off", 0) == 0);
-    write_summary(result, wall.wall_time());
+    write_summary(result, earlier_wall_seconds + wall.wall_time());
     pcout << "Stopped (" << result.stop_reason << ") after " << step << " steps (" << rejected_steps
           << " rejected) at t = " << time << "; outcome: " << result.outcome << "; energy " << stats.last("energy")
           << ", mass drift " << stats.last("mass_drift") << ", area drift " << stats.last("area_drift")

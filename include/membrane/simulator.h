@@ -30,6 +30,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace Membrane
 {
@@ -148,5 +149,7 @@ namespace Membrane
     std::unique_ptr<class FieldOutput> output;
     dealii::Timer                      wall;
     double                             last_progress = -1e9;
+    double earlier_wall_seconds = 0; ///< wall time of the segments before a resume
+    std::vector<std::string> changed_on_resume; ///< "Section/Entry: old -> new" against the checkpoint's run
   };
 } // namespace Membrane

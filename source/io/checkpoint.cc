@@ -2,6 +2,7 @@
 #include <membrane/io/checkpoint.h>
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
 #include <cmath>
 #include <fstream>
@@ -90,6 +91,14 @@ namespace Membrane
                                    std::to_string(int(written)) + " cells per side; this run has <Mesh/Cells per "
                                    "side> = " + std::to_string(cells_per_side)));
           }
+        if (name == "parameters")
+          {
+            std::size_t n = 0;
+            words >> n;
+            for (std::size_t i = 0; i < n && std::getline(in, line); ++i)
+              ;
+            continue;
+          }
         if (name != "refined")
           continue;
         std::size_t n = 0;
@@ -127,9 +136,63 @@ namespace Membrane
       }
   }
 
+  std::string checkpoint_parameters(const std::string &path)
+  {
+    std::ifstream in(path);
+    std::string   text;
+    for (std::string line; std::getline(in, line);)
+      {
+        std::istringstream words(line);
+        std::string        name;
+        std::size_t        n = 0;
+        words >> name >> n;
+        if (name == "vertices")
+          break;
+        if (name != "parameters")
+          continue;
+        for (std::size_t i = 0; i < n && std::getline(in, line); ++i)
+          text += line + '\n';
+        break;
+      }
+    return text;
+  }
+
+  std::vector<std::string> changed_parameters(const std::string &before, const std::string &now)
+  {
+    // ShortPRM: "subsection Name" / "end" around "set Entry = value" lines.
+    const auto entries = [](const std::string &text) {
+      std::map<std::string, std::string> values;
+      std::vector<std::string>           sections;
+      std::istringstream                 in(text);
+      for (std::string line; std::getline(in, line);)
+        {
+          line = Utilities::trim(line);
+          if (line.rfind("subsection ", 0) == 0)
+            sections.push_back(Utilities::trim(line.substr(11)));
+          else if (line == "end" && !sections.empty())
+            sections.pop_back();
+          else if (line.rfind("set ", 0) == 0 && line.find('=') != std::string::npos)
+            {
+              std::string path;
+              for (const auto &section : sections)
+                path += section + "/";
+              const auto eq = line.find('=');
+              values[path + Utilities::trim(line.substr(4, eq - 4))] = Utilities::trim(line.substr(eq + 1));
+            }
+        }
+      return values;
+    };
+    const auto               old_values = entries(before), new_values = entries(now);
+    std::vector<std::string> changes;
+    for (const auto &[path, value] : new_values)
+      if (const auto it = old_values.find(path); it != old_values.end() && it->second != value)
+        changes.push_back(path + ": " + it->second + " -> " + value);
+    return changes;
+  }
+
   void save_checkpoint(const std::string &path, const Surface &surface, const Vector &phi,
                        const Vector &reference_areas, const std::map<std::string, double> &scalars,
-                       const std::string &statistics_text)
+                       const std::string &statistics_text, const std::string &parameter_text)
   {
     const Vector       &D     = surface.displacement();
     const Vector        areas = surface.scalar_space().ghosted_copy(reference_areas);
@@ -149,6 +212,12 @@ namespace Membrane
     out << magic << '\n' << std::setprecision(17);
     for (const auto &[name, value] : scalars)
       out << name << ' ' << value << '\n';
+    {
+      const auto lines = Utilities::split_string_list(parameter_text, '\n');
+      out << "parameters " << lines.size() << '\n';
+      for (const auto &line : lines)
+        out << line << '\n';
+    }
     const auto refined = refined_cells(surface.scalar_space().dof_handler().get_triangulation());
     out << "refined " << refined.size() << '\n';
     for (const auto &[level, x, y] : refined)
@@ -187,7 +256,7 @@ namespace Membrane
             words >> n;
             break;
           }
-        if (name == "refined") // the mesh: read by refine_like_checkpoint()
+        if (name == "refined" || name == "parameters") // read by refine_like_checkpoint(), checkpoint_parameters()
           {
             std::size_t cells = 0;
             words >> cells;

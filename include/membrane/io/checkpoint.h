@@ -11,11 +11,19 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace Membrane
 {
   void save_checkpoint(const std::string &path, const Surface &surface, const Vector &phi_ghosted,
-                       const Vector &reference_areas, const std::map<std::string, double> &scalars, const std::string &statistics_text);
+                       const Vector &reference_areas, const std::map<std::string, double> &scalars,
+                       const std::string &statistics_text, const std::string &parameter_text = "");
+
+  /// The parameters (ShortPRM text) a checkpoint's run used ("" for older checkpoints).
+  std::string checkpoint_parameters(const std::string &path);
+
+  /// Entries whose values differ between two ShortPRM texts, as "Section/Entry: old -> new".
+  std::vector<std::string> changed_parameters(const std::string &before, const std::string &now);
 
   /// Refine the input mesh `triangulation` until it is the (adapted) mesh the
   /// checkpoint `path` was written on; call before the spaces are set up. Throws
