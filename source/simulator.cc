@@ -1,6 +1,7 @@
 #include <membrane/io/atomic_file.h>
 #include <membrane/io/checkpoint.h>
 #include <membrane/io/field_output.h>
+#include <membrane/io/log_file.h>
 #include <membrane/simulator.h>
 #include <membrane/surface/grid_control.h>
 #include <membrane/surface/initial_shapes.h>
@@ -58,7 +59,10 @@ namespace Membrane
     if (parameters.evolve_shape)
       shape_solver.setup();
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
-      std::filesystem::create_directories(parameters.output_directory);
+      {
+        std::filesystem::create_directories(parameters.output_directory);
+        log = std::make_unique<LogFile>(parameters.output_directory + "/log.txt");
+      }
     MPI_Barrier(communicator);
     output = std::make_unique<FieldOutput>(parameters.output_directory);
   }
@@ -430,11 +434,19 @@ namespace Membrane
     if (options.quiet || (!force && now - last_progress < 1.0))
       return;
     last_progress = now;
-    pcout << "step " << std::setw(6) << step << "  t = " << std::scientific << std::setprecision(4) << time
-          << "  tau = " << std::setprecision(2) << stats.last("tau") << "  F = " << std::setprecision(6)
-          << stats.last("energy") << std::defaultfloat << std::setprecision(3) << "  bud height "
-          << bud.height << "  neck " << bud.neck_radius << "  rejected " << rejected_steps << "  elapsed " << now
-          << " s" << std::endl;
+    // Remaining wall time from the rate of this segment of the run.
+    const double done = parameters.end_time > 0 ? time / parameters.end_time : 1.0;
+    const double rate = (time - segment_start_time) / std::max(now, 1e-9);
+    std::ostringstream line; // its own formatting state, not the terminal's
+    line << "step " << std::setw(6) << step << "  t = " << std::scientific << std::setprecision(4) << time
+         << std::defaultfloat << " (" << std::fixed << std::setprecision(1) << 100 * done << " %)"
+         << std::scientific << "  tau = " << std::setprecision(2) << stats.last("tau") << "  F = "
+         << std::setprecision(6) << stats.last("energy") << std::defaultfloat << std::setprecision(3)
+         << "  bud height " << bud.height << "  neck " << bud.neck_radius << "  rejected " << rejected_steps
+         << "  elapsed " << now << " s";
+    if (rate > 0 && done < 1)
+      line << ", ETA " << (parameters.end_time - time) / rate << " s";
+    pcout << line.str() << std::endl;
   }
 
   void Simulator::write_checkpoint() const
@@ -503,6 +515,7 @@ namespace Membrane
       }
     else
       resume();
+    segment_start_time = time;
     warn_if_unresolved();
     write_run_info();
     pcout << "Membrane patch: " << triangulation.n_global_active_cells() << " cells, "

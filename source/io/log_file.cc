@@ -1,0 +1,67 @@
+#include <membrane/io/log_file.h>
+
+#include <iostream>
+
+namespace Membrane
+{
+  namespace
+  {
+    /// A stream buffer that writes to two others.
+    class TeeBuffer : public std::streambuf
+    {
+    public:
+      TeeBuffer(std::streambuf *first, std::streambuf *second)
+        : first(first)
+        , second(second)
+      {}
+
+    protected:
+      int overflow(const int c) override
+      {
+        if (c == traits_type::eof())
+          return traits_type::not_eof(c);
+        const auto ch = traits_type::to_char_type(c);
+        const bool ok = first->sputc(ch) != traits_type::eof();
+        second->sputc(ch); // the log is best effort: a full disk must not stop the run
+        return ok ? c : traits_type::eof();
+      }
+      std::streamsize xsputn(const char *s, const std::streamsize n) override
+      {
+        second->sputn(s, n);
+        return first->sputn(s, n);
+      }
+      int sync() override
+      {
+        second->pubsync();
+        return first->pubsync();
+      }
+
+    private:
+      std::streambuf *first, *second;
+    };
+  } // namespace
+
+  LogFile::LogFile(const std::string &path)
+    : file(path, std::ios::app)
+    , out_original(std::cout.rdbuf())
+    , err_original(std::cerr.rdbuf())
+  {
+    if (!file)
+      {
+        std::cerr << "Warning: cannot write the log file <" << path << ">; output goes to the terminal only\n";
+        return;
+      }
+    out_tee = std::make_unique<TeeBuffer>(out_original, file.rdbuf());
+    err_tee = std::make_unique<TeeBuffer>(err_original, file.rdbuf());
+    std::cout.rdbuf(out_tee.get());
+    std::cerr.rdbuf(err_tee.get());
+  }
+
+  LogFile::~LogFile()
+  {
+    std::cout.flush();
+    std::cerr.flush();
+    std::cout.rdbuf(out_original);
+    std::cerr.rdbuf(err_original);
+  }
+} // namespace Membrane
