@@ -15,6 +15,10 @@
 //   5. cell quality of Gamma^{m+1}.
 // With adaptive stepping a step is rejected (state restored, tau halved) when F
 // would rise, a cell would fold or invert, or a solve fails; easy steps let tau grow.
+//
+// The members are defined in simulator.cc (set-up, resume, the time loop),
+// simulator_step.cc (one trial step), simulator_output.cc (statistics, progress,
+// checkpoints, run records) and simulator_adaptation.cc (mesh adaptation).
 
 #include <membrane/analysis/bud_shape.h>
 #include <membrane/cahn_hilliard.h>
@@ -64,6 +68,8 @@ namespace Membrane
   private:
     /// Why a trial step was rejected (empty: accepted).
     using Rejection = std::string;
+    /// A number with 4 significant digits, for messages.
+    static std::string format(double value);
 
     /// What a rejected step (or a discarded grid move) restores.
     struct State

@@ -1,0 +1,143 @@
+// What a run writes: the statistics row of each step, the progress line, checkpoints
+// and the run's records (run_info.json, summary.json). Part of Simulator.
+#include <membrane/io/atomic_file.h>
+#include <membrane/io/checkpoint.h>
+#include <membrane/simulator.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  void Simulator::record_statistics(const double tau_used)
+  {
+    TimerOutput::Scope scope(timer, "statistics");
+    const double area = surface.area();
+    const double mass = integrate(surface, phi);
+    area_error        = max_relative_difference(vertex_areas(surface), reference_areas);
+    bud               = measure_bud(surface, phi);
+    stats.set("step", step);
+    stats.set("time", time);
+    stats.set("tau", tau_used);
+    stats.set("energy", energy.total());
+    stats.set("bending_energy", energy.bending);
+    stats.set("gaussian_energy", energy.gaussian);
+    stats.set("gradient_energy", energy.gradient);
+    stats.set("well_energy", energy.well);
+    stats.set("area", area);
+    stats.set("area_drift", (area - initial_area) / initial_area);
+    stats.set("mass", mass);
+    stats.set("mass_drift", (mass - initial_mass) / std::max(std::abs(initial_mass), initial_area));
+    const auto [phi_min, phi_max] = global_range(phi);
+    stats.set("phi_min", phi_min);
+    stats.set("phi_max", phi_max);
+    const auto [gamma_min, gamma_max] = global_range(pressure);
+    stats.set("gamma_min", gamma_min);
+    stats.set("gamma_max", gamma_max);
+    stats.set("bud_height", bud.height);
+    stats.set("neck_radius", bud.neck_radius);
+    stats.set("bud_radius", bud.bud_radius);
+    stats.set("neck_ratio", bud.neck_ratio);
+    stats.set("domain_area", bud.domain_area);
+    stats.set("domain_protrusion", bud.domain_protrusion);
+    stats.set("bud_direction", bud.direction);
+    stats.set("max_increment", max_increment);
+    stats.set("remap_mass_correction", remap_correction);
+    stats.set("min_corner_sine", cell_quality);
+    stats.set("rejected_steps", rejected_steps);
+    stats.set("grid_control_skipped", grid_control_skipped);
+    stats.set("area_error", area_error);
+    stats.set("shape_mass_correction", shape_mass_correction);
+    stats.set("error_estimate", error_estimate);
+    stats.set("area_projections", area_projections);
+    stats.set("solver_iterations", solver_iterations);
+    stats.set("cells", triangulation.n_global_active_cells());
+    stats.set("dofs", surface.scalar_space().dof_handler().n_dofs());
+    stats.set("refinement_level", finest_level());
+    stats.set("adaptations", adaptations);
+    stats.set("adaptation_energy_jump", adaptation_energy_jump);
+    stats.set("wall_seconds", earlier_wall_seconds + wall.wall_time());
+    stats.end_row();
+  }
+
+  void Simulator::report_progress(const bool force)
+  {
+    const double now = wall.wall_time();
+    if (options.quiet || (!force && now - last_progress < 1.0))
+      return;
+    last_progress = now;
+    // Remaining wall time from the rate of this segment of the run.
+    const double done = parameters.end_time > 0 ? time / parameters.end_time : 1.0;
+    const double rate = (time - segment_start_time) / std::max(now, 1e-9);
+    std::ostringstream line; // its own formatting state, not the terminal's
+    line << "step " << std::setw(6) << step << "  t = " << std::scientific << std::setprecision(4) << time
+         << std::defaultfloat << " (" << std::fixed << std::setprecision(1) << 100 * done << " %)"
+         << std::scientific << "  tau = " << std::setprecision(2) << stats.last("tau") << "  F = "
+         << std::setprecision(6) << stats.last("energy") << std::defaultfloat << std::setprecision(3)
+         << "  bud height " << bud.height << "  neck " << bud.neck_radius << "  rejected " << rejected_steps
+         << "  elapsed " << now << " s";
+    if (rate > 0 && done < 1)
+      line << ", ETA " << (parameters.end_time - time) / rate << " s";
+    pcout << line.str() << std::endl;
+  }
+
+  void Simulator::write_checkpoint() const
+  {
+    TimerOutput::Scope scope(timer, "checkpoint");
+    save_checkpoint(parameters.output_directory + "/checkpoint.txt", surface, phi, reference_areas,
+                    {{"time", time},
+                     {"tau", step_control.tau()},
+                     {"step", step},
+                     {"rejected_steps", rejected_steps},
+                     {"grid_control_skipped", grid_control_skipped},
+                     {"initial_area", initial_area},
+                     {"initial_mass", initial_mass},
+                     {"next_output_time", next_output_time},
+                     {"adaptations", adaptations},
+                     {"cells_per_side", parameters.cells_per_side},
+                     {"wall_seconds", earlier_wall_seconds + wall.wall_time()},
+                     {"adaptation_energy_jump", adaptation_energy_jump}},
+                    stats.to_text(), options.parameter_text);
+  }
+
+  void Simulator::write_run_info() const
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    const std::string dir = parameters.output_directory + "/";
+    write_file_atomically(dir + "parameters.prm", options.parameter_text);
+    std::ostringstream info;
+    info << "{\n  \"code_version\": \"" << code_version() << "\",\n"
+         << "  \"command\": \"" << options.command_line << "\",\n"
+         << "  \"mpi_ranks\": " << Utilities::MPI::n_mpi_processes(communicator) << ",\n"
+         << "  \"cells\": " << triangulation.n_global_active_cells() << ",\n"
+         << "  \"vertices_dofs\": " << surface.scalar_space().dof_handler().n_dofs() << ",\n"
+         << "  \"parameter_file\": \"parameters.prm\"\n}\n";
+    write_file_atomically(dir + "run_info.json", info.str());
+  }
+
+  void Simulator::write_summary(const RunResult &result, const double wall_seconds) const
+  {
+    if (Utilities::MPI::this_mpi_process(communicator) != 0)
+      return;
+    std::ostringstream out;
+    out << std::setprecision(16) << "{\n  \"code_version\": \"" << code_version() << "\",\n"
+        << "  \"stop_reason\": \"" << result.stop_reason << "\",\n  \"failed\": " << (result.failed ? "true" : "false")
+        << ",\n  \"outcome\": \"" << result.outcome << "\",\n  \"steps\": " << step
+        << ",\n  \"rejected_steps\": " << rejected_steps << ",\n  \"time\": " << time
+        << ",\n  \"wall_seconds\": " << wall_seconds << ",\n  \"grid_control_refused_fraction\": "
+        << (step > 0 ? double(grid_control_skipped) / step : 0.0);
+    for (const char *c : {"energy", "bending_energy", "gaussian_energy", "gradient_energy", "well_energy", "area",
+                          "area_drift", "mass", "mass_drift", "bud_height", "neck_radius", "bud_radius", "neck_ratio",
+                          "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error", "cells",
+                          "adaptations", "adaptation_energy_jump"})
+      out << ",\n  \"" << c << "\": " << stats.last(c);
+    out << "\n}\n";
+    write_file_atomically(parameters.output_directory + "/summary.json", out.str());
+  }
+} // namespace Membrane

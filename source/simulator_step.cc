@@ -1,0 +1,217 @@
+// One trial step of a run (the steps 1-5 of simulator.h) and the state it restores
+// when the step is rejected. Part of Simulator.
+#include <membrane/simulator.h>
+#include <membrane/surface/grid_control.h>
+
+#include <cmath>
+
+namespace Membrane
+{
+  using namespace dealii;
+
+  Simulator::State Simulator::save_state() const
+  {
+    State state{surface.vector_space().make_owned(), phi, pressure, reference_areas, geometry, energy};
+    state.displacement = surface.displacement();
+    return state;
+  }
+
+  void Simulator::restore_state(const State &state)
+  {
+    surface.set_displacement(state.displacement);
+    phi      = state.phi;
+    pressure = state.pressure;
+    reference_areas = state.reference_areas;
+    geometry = state.geometry;
+    energy   = state.energy;
+  }
+
+  Vector Simulator::area_defect() const
+  {
+    Vector defect = surface.scalar_space().make_owned();
+    if (parameters.shape_options.correct_area)
+      {
+        defect = reference_areas;
+        defect -= vertex_areas(surface);
+      }
+    return defect;
+  }
+
+  bool Simulator::move_shape(const double tau_trial, const Vector &phi_new)
+  {
+    const ShapeOptions &options = parameters.shape_options;
+    ShapeUpdate update = shape_solver.step(surface, geometry, parameters.material, options, parameters.linear_solver,
+                                           tau_trial, area_defect(), phi, chemical_potential, &timer);
+    Vector moved = surface.vector_space().make_owned();
+    moved        = surface.displacement();
+    const auto apply = [&](const ShapeUpdate &part) {
+      if (!std::isfinite(part.increment.l2_norm()) || !std::isfinite(part.pressure.l2_norm()))
+        return false;
+      moved += part.increment;
+      surface.set_displacement(moved);
+      return true;
+    };
+    if (!apply(update))
+      return false;
+    max_increment  = update.increment.linfty_norm();
+    step_increment = update.increment;
+    Vector gamma  = update.pressure;
+    // The linearized constraint leaves an O(|grad W|^2) area error in every step.
+    // Projecting it out within the step (same operator, one back-substitution)
+    // keeps it from being corrected by the next step, whatever its tau.
+    area_projections = 0;
+    if (options.correct_area)
+      {
+        TimerOutput::Scope scope(timer, "area projection");
+        for (unsigned int k = 0; k < options.area_corrections; ++k)
+          {
+            const Vector defect = area_defect();
+            Vector       areas  = reference_areas;
+            areas -= defect;
+            if (max_relative_difference(areas, reference_areas) <= options.area_tolerance)
+              break;
+            const ShapeUpdate correction = shape_solver.correct_area(surface, defect, &timer);
+            if (!apply(correction))
+              return false;
+            gamma += correction.pressure;
+            step_increment += correction.increment;
+            ++area_projections;
+          }
+      }
+    pressure = gamma;
+    // phi~ rides on the vertices (Lagrangian), so integral phi ds = sum phi_i a_i
+    // changes with the vertex areas. The pressure stabilization leaves a local area
+    // error of O(tau) per step (the residual of the tangential law in the area row)
+    // that correlates with grad phi and so adds up; a constant restores the mass.
+    phi = phi_new;
+    if (options.correct_mass)
+      {
+        Vector       corrected = phi_new;
+        const double mass      = integrate(surface, phi);
+        shape_mass_correction  = (initial_mass - mass) / surface.area();
+        corrected.add(shape_mass_correction);
+        surface.scalar_space().constraints().distribute(corrected);
+        phi = corrected;
+      }
+    return true;
+  }
+
+  void Simulator::control_grid(const double energy_before)
+  {
+    const Material &material = parameters.material;
+    const auto      update_geometry = [&]() {
+      TimerOutput::Scope scope(timer, "geometry");
+      geometry = compute_geometry(surface);
+      energy   = compute_energy(surface, geometry, phi, material);
+    };
+    if (!(parameters.evolve_shape && parameters.grid_control_weight > 0))
+      return update_geometry();
+
+    // Grid control re-parametrizes the Lagrangian surface X~. The moved state is
+    // kept when the step as a whole does not raise the energy; only otherwise is the
+    // geometry of X~ itself needed (near equilibrium the move's O(h^2) energy change
+    // would stall the energy-based step control at any tau).
+    const State lagrangian = save_state();
+    {
+      TimerOutput::Scope scope(timer, "grid control");
+      const Vector normal = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
+      const Vector shift  = grid_control_displacement(surface, normal, parameters.grid_control_weight);
+      const Vector areas_before = vertex_areas(surface);
+      remap_correction = move_tangentially_and_remap(surface, shift, phi);
+      // The reference area moves with the vertices, each keeping its relative error;
+      // the total reference area is kept exactly.
+      Vector carried = vertex_areas(surface);
+      for (const auto i : carried.locally_owned_elements())
+        if (areas_before[i] > 0)
+          carried[i] = carried[i] * (reference_areas[i] / areas_before[i]);
+      carried.compress(VectorOperation::insert);
+      const double total = carried.mean_value() * carried.size();
+      if (total > 0)
+        carried *= initial_area / total;
+      reference_areas = carried;
+    }
+    update_geometry();
+    if (std::isfinite(energy.total()) &&
+        energy.total() <= energy_before + parameters.energy_tolerance * std::abs(energy_before))
+      return;
+    restore_state(lagrangian);
+    remap_correction  = 0;
+    grid_move_skipped = true;
+    update_geometry();
+  }
+
+  Simulator::Rejection Simulator::try_step(const double tau_trial)
+  {
+    const Material &material = parameters.material;
+    const State     before   = save_state();
+    const auto      restore  = [&](const Rejection &why) {
+      restore_state(before);
+      return why;
+    };
+    grid_move_skipped = false;
+
+    Vector phi_new   = surface.scalar_space().make_owned();
+    Vector potential = surface.scalar_space().make_owned();
+    try
+      {
+        solver_iterations = cahn_hilliard.step(surface, geometry, material, parameters.cahn_hilliard,
+                                               parameters.linear_solver, tau_trial, phi, phi_new, potential, &timer);
+        if (!std::isfinite(phi_new.l2_norm()) || phi_new.linfty_norm() > 10)
+          return restore("phi became non-finite or |phi| > 10");
+        chemical_potential = potential;
+        step_phi_change    = phi_new;
+        {
+          Vector old = surface.scalar_space().make_owned();
+          old        = phi;
+          step_phi_change -= old;
+        }
+        step_increment = surface.vector_space().make_owned();
+
+        max_increment    = 0;
+        remap_correction = 0;
+        if (parameters.evolve_shape)
+          {
+            if (!move_shape(tau_trial, phi_new))
+              return restore("the shape solve gave non-finite values");
+          }
+        else
+          phi = phi_new;
+        control_grid(before.energy.total());
+        cell_quality = min_corner_sine(surface, geometry.normal);
+      }
+    catch (const std::exception &)
+      {
+        return restore("a linear solve failed");
+      }
+
+    if (!std::isfinite(energy.total()))
+      return restore("the energy became non-finite");
+    if (parameters.evolve_shape && cell_quality < parameters.min_cell_quality)
+      return restore("a cell degenerated (corner sine " + format(cell_quality) + " < " +
+                     format(parameters.min_cell_quality) + ")");
+    const double rise = energy.total() - before.energy.total();
+    if (rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
+      return restore("the energy would rise by " + format(rise));
+    error_estimate = step_control.controls_accuracy() && previous_tau > 0 ? estimate_error(tau_trial) : -1;
+    if (error_estimate > 1)
+      {
+        rejection_factor = TimeStepController::shrink_factor(error_estimate);
+        return restore("the estimated local error is " + format(error_estimate) +
+                       " x <Time stepping/Accuracy tolerance>");
+      }
+    return {};
+  }
+
+  double Simulator::estimate_error(const double tau) const
+  {
+    // First-order steps: the local error is about half the change of the increment
+    // against the previous velocity, tau^2/2 |dV/dt|. Shape in cells, phi absolute.
+    const double ratio     = tau / previous_tau;
+    const double cell_size = 1.0 / (parameters.cells_per_side << finest_level());
+    Vector       shape     = step_increment;
+    shape.add(-ratio, previous_increment);
+    Vector phase = step_phi_change;
+    phase.add(-ratio, previous_phi_change);
+    return 0.5 * std::max(shape.linfty_norm() / cell_size, phase.linfty_norm()) / step_control.accuracy();
+  }
+} // namespace Membrane
