@@ -462,3 +462,38 @@ TEST(Shape, VertexAreaErrorFallsWithTimeStep)
   EXPECT_LT(errors[2], errors[1]);
   EXPECT_LT(errors[2], errors[0] / 2);
 }
+
+// The bud observables do not depend on where the mesh is fine: the bump measured on a
+// uniform 32 x 32 mesh and on the same mesh refined twice on the bump (where
+// the samples then crowd) gives the same direction, height and domain protrusion.
+TEST(Shape, BudObservablesIndependentOfLocalRefinement)
+{
+  InitialPhaseOptions initial;
+  initial.type        = "bump";
+  initial.bump_height = 1.0;
+  const auto measure = [&](const unsigned int refinements) {
+    Testing::FixedSurface setup(32);
+    for (unsigned int r = 0; r < refinements; ++r)
+      {
+        for (const auto &cell : setup.tria.active_cell_iterators())
+          {
+            const double rho = cell->center().distance(dealii::Point<3>(0.5, 0.5, 0));
+            if (cell->is_locally_owned() && rho < 0.3)
+              cell->set_refine_flag();
+          }
+        setup.tria.execute_coarsening_and_refinement();
+      }
+    setup.surface.setup();
+    set_bump(setup.surface, 0.5, 1.3);
+    setup.set_phase(initial);
+    std::cout << setup.tria.n_global_active_cells() << " cells: ";
+    return measure_bud(setup.surface, setup.phi);
+  };
+  const BudShape uniform = measure(0);
+  std::cout << "height " << uniform.height << ", protrusion " << uniform.domain_protrusion << std::endl;
+  const BudShape refined = measure(2);
+  std::cout << "height " << refined.height << ", protrusion " << refined.domain_protrusion << std::endl;
+  EXPECT_EQ(refined.direction, 1);
+  EXPECT_NEAR(refined.height / uniform.height, 1.0, 0.01);
+  EXPECT_NEAR(refined.domain_protrusion / uniform.domain_protrusion, 1.0, 0.03);
+}

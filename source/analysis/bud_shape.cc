@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace Membrane
 {
@@ -72,29 +73,43 @@ namespace Membrane
     if (edges.empty())
       return shape;
 
-    std::vector<double> z(edges.size());
-    std::transform(edges.begin(), edges.end(), z.begin(), [](const Point<spacedim> &p) { return p[2]; });
-    std::nth_element(z.begin(), z.begin() + z.size() / 2, z.end());
-    const double median = z[z.size() / 2];
-    const auto [low, high] = std::minmax_element(edges.begin(), edges.end(),
-                                                 [](const auto &a, const auto &b) { return a[2] < b[2]; });
-    shape.direction          = (*high)[2] - median >= median - (*low)[2] ? 1 : -1;
-    const Point<spacedim> apex = shape.direction > 0 ? *high : *low;
+    // Samples are edge end points; on a locally refined mesh they crowd where the cells
+    // are small. Weighting each by its edge's squared length (the area it stands for)
+    // makes the averages below independent of the mesh: an end point weighs |b - a|^2,
+    // a rim crossing (a point of a curve) |b - a|.
+    std::vector<double> weight(edges.size());
+    for (std::size_t e = 0; e + 1 < edges.size(); e += 2)
+      weight[e] = weight[e + 1] = (edges[e + 1] - edges[e]).norm_square();
+    std::vector<std::size_t> order(edges.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](const auto a, const auto b) { return edges[a][2] < edges[b][2]; });
+    const double total_weight = std::accumulate(weight.begin(), weight.end(), 0.0);
+    double       median = edges[order[order.size() / 2]][2];
+    double below = 0;
+    for (const auto k : order)
+      if ((below += weight[k]) >= 0.5 * total_weight)
+        {
+          median = edges[k][2];
+          break;
+        }
+    const Point<spacedim> &low = edges[order.front()], &high = edges[order.back()];
+    shape.direction            = high[2] - median >= median - low[2] ? 1 : -1;
+    const Point<spacedim> apex = shape.direction > 0 ? high : low;
     const auto radius = [&](const Point<spacedim> &p) {
       return std::hypot(wrap(p[0] - apex[0]), wrap(p[1] - apex[1]));
     };
 
-    double far_sum = 0, far_count = 0;
-    for (const auto &p : edges)
-      if (radius(p) > 0.5)
+    double far_sum = 0, far_weight = 0;
+    for (std::size_t k = 0; k < edges.size(); ++k)
+      if (radius(edges[k]) > 0.5)
         {
-          far_sum += p[2];
-          far_count += 1;
+          far_sum += weight[k] * edges[k][2];
+          far_weight += weight[k];
         }
-    const double far = far_count > 0 ? far_sum / far_count : median;
+    const double far = far_weight > 0 ? far_sum / far_weight : median;
 
     // The phase-A domain: its extreme point along s and the mean height of its rim.
-    double top = -std::numeric_limits<double>::max(), rim_sum = 0, rim_count = 0;
+    double top = -std::numeric_limits<double>::max(), rim_sum = 0, rim_weight = 0;
     for (std::size_t e = 0; e + 1 < edges.size(); e += 2)
       {
         for (const std::size_t k : {e, e + 1})
@@ -102,13 +117,14 @@ namespace Membrane
             top = std::max(top, shape.direction * edges[k][2]);
         if ((edge_phi[e] > 0) != (edge_phi[e + 1] > 0))
           {
-            const double s = edge_phi[e] / (edge_phi[e] - edge_phi[e + 1]);
-            rim_sum += edges[e][2] + s * (edges[e + 1][2] - edges[e][2]);
-            rim_count += 1;
+            const double s      = edge_phi[e] / (edge_phi[e] - edge_phi[e + 1]);
+            const double length = std::sqrt(weight[e]);
+            rim_sum += length * (edges[e][2] + s * (edges[e + 1][2] - edges[e][2]));
+            rim_weight += length;
           }
       }
-    if (rim_count > 0 && shape.domain_area > 0)
-      shape.domain_protrusion = (top - shape.direction * rim_sum / rim_count) /
+    if (rim_weight > 0 && shape.domain_area > 0)
+      shape.domain_protrusion = (top - shape.direction * rim_sum / rim_weight) /
                                 (2 * std::sqrt(shape.domain_area / (4 * M_PI)));
     shape.height     = shape.direction * (apex[2] - far);
     if (shape.height <= 0)
