@@ -1,13 +1,23 @@
 #include <membrane/app.h>
+#include <membrane/io/run_directory.h>
+#include <membrane/io/stop_signal.h>
 #include <membrane/parameters.h>
 #include <membrane/simulator.h>
+#include <membrane/types.h>
 
 #include <deal.II/base/mpi.h>
 
 #include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
 #include <iostream>
+#include <map>
+#include <memory>
 #include <sstream>
 #include <string>
+
+#include <unistd.h>
 
 namespace Membrane
 {
@@ -15,8 +25,23 @@ namespace Membrane
 
   namespace
   {
-    const char *usage = "Usage: membrane-flow [--quiet] [--set 'Section/Entry=value' ...] <input.prm>\n"
-                        "       membrane-flow --print-parameters [prm|json]\n";
+    const char *usage =
+      "Usage: membrane-flow [--quiet] [--overwrite] [--no-memory-check] [--set 'Section/Entry=value' ...] <input.prm>\n"
+      "       membrane-flow --print-parameters [prm|json]\n"
+      "       membrane-flow --version | --help\n"
+      "  --set 'Section/Entry=value'  override an entry of the input file (repeatable)\n"
+      "  --quiet                      no progress lines and no timing table\n"
+      "  --overwrite                  delete the output files of an earlier run in Output/Directory first\n"
+      "                               (only files membrane-flow writes; see docs/reliability.md)\n"
+      "  --no-memory-check            start even if the memory estimate exceeds the available memory\n"
+      "Exit codes: 0 success, 1 bad input or usage, 2 the run failed numerically,\n"
+      "            128 + signal when stopped by SIGINT (130) or SIGTERM (143).\n";
+
+    /// A usage error: a message naming the problem, then a pointer to --help.
+    struct UsageError : std::runtime_error
+    {
+      using std::runtime_error::runtime_error;
+    };
 
     /// Collapse runs of whitespace (deal.II wraps its messages) into one space.
     std::string single_line(const std::string &text)
@@ -46,68 +71,249 @@ namespace Membrane
           }
       return single_line(text);
     }
+
+    struct CommandLine
+    {
+      RunOptions                                       options;
+      std::string                                      input;
+      std::vector<std::pair<std::string, std::string>> overrides;
+      bool                                             overwrite       = false;
+      bool                                             check_memory    = true;
+    };
+
+    /// Every argument is checked: a malformed --set, an unknown option or a second input
+    /// file is a UsageError (never ignored, never a default run).
+    CommandLine parse_command_line(const std::vector<std::string> &args)
+    {
+      CommandLine line;
+      const auto  add_override = [&](const std::string &assignment) {
+        const auto eq = assignment.find('=');
+        if (eq == std::string::npos)
+          throw UsageError("--set " + assignment + ": expected 'Section/Entry=value' (there is no '='), e.g. --set "
+                                                   "'Material/Line tension=630'");
+        if (assignment.find_first_not_of(" \t", 0) >= eq)
+          throw UsageError("--set " + assignment + ": the entry path before '=' is empty; expected "
+                                                   "'Section/Entry=value', e.g. --set 'Material/Line tension=630'");
+        line.overrides.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
+      };
+      for (std::size_t i = 0; i < args.size(); ++i)
+        {
+          const std::string &a = args[i];
+          if (a == "--quiet")
+            line.options.quiet = true;
+          else if (a == "--overwrite")
+            line.overwrite = true;
+          else if (a == "--no-memory-check")
+            line.check_memory = false;
+          else if (a == "--set")
+            {
+              if (i + 1 >= args.size())
+                throw UsageError("--set needs an argument 'Section/Entry=value', e.g. --set 'Material/Line tension=630'");
+              add_override(args[++i]);
+            }
+          else if (a.rfind("--set=", 0) == 0)
+            add_override(a.substr(6));
+          else if (a == "--print-parameters" || a == "--version" || a == "--help" || a == "-h")
+            throw UsageError(a + " must come alone (first) on the command line");
+          else if (a.size() > 1 && a[0] == '-')
+            throw UsageError("unknown option <" + a + ">");
+          else if (!line.input.empty())
+            throw UsageError("more than one input file: <" + line.input + "> and <" + a +
+                             "> (one input file; quote values with spaces: --set 'Section/Entry=a b')");
+          else
+            line.input = a;
+        }
+      if (line.input.empty())
+        throw UsageError("no input file given");
+      return line;
+    }
+
+    std::string format_bytes(const double bytes)
+    {
+      std::ostringstream out;
+      out << std::fixed << std::setprecision(1);
+      if (bytes >= 1e12)
+        out << bytes / 1e12 << " TB";
+      else if (bytes >= 1e9)
+        out << bytes / 1e9 << " GB";
+      else
+        out << bytes / 1e6 << " MB";
+      return out.str();
+    }
+
+    /// MemAvailable of /proc/meminfo in bytes (negative if unknown).
+    double mem_available()
+    {
+      std::ifstream meminfo("/proc/meminfo");
+      std::string   key, unit;
+      double        value;
+      while (meminfo >> key >> value)
+        {
+          std::getline(meminfo, unit);
+          if (key == "MemAvailable:")
+            return value * 1024; // kB
+        }
+      return -1;
+    }
+
+    /// The memory available to the run: MemAvailable summed over the distinct hosts of
+    /// the ranks (negative if unknown on any). Collective; every rank gets the same value.
+    double available_memory(const MPI_Comm communicator)
+    {
+      char host[256] = {};
+      ::gethostname(host, sizeof host - 1);
+      std::ostringstream mine;
+      mine << std::setprecision(17) << mem_available() << ' ' << host;
+      std::map<std::string, double> per_host;
+      for (const std::string &entry : Utilities::MPI::all_gather(communicator, mine.str()))
+        {
+          std::istringstream in(entry);
+          double             bytes = -1;
+          std::string        name;
+          in >> bytes;
+          std::getline(in, name);
+          if (!(bytes >= 0))
+            return -1;
+          per_host[name] = bytes;
+        }
+      double total = 0;
+      for (const auto &[name, bytes] : per_host)
+        total += bytes;
+      return total;
+    }
+
+    /// Refuse a mesh far too large for the machine(s), before anything is allocated.
+    void check_memory(const Parameters &parameters, const MPI_Comm communicator)
+    {
+      const unsigned int   ranks     = Utilities::MPI::n_mpi_processes(communicator);
+      const double         available = available_memory(communicator);
+      const MemoryEstimate estimate  = estimate_memory(parameters, ranks);
+      if (available < 0 || estimate.bytes <= available)
+        return;
+      unsigned int fits = 0;
+      for (unsigned int n = 2; n <= parameters.cells_per_side; ++n)
+        if (estimate_memory(parameters, ranks, n).bytes <= available)
+          fits = n;
+      std::ostringstream message;
+      message << "Entry <Mesh/Cells per side> = " << parameters.cells_per_side << ": the run needs an estimated "
+              << format_bytes(estimate.bytes) << " of memory (" << std::setprecision(3) << estimate.vertices / 1e6
+              << " million vertices; "
+              << (parameters.linear_solver.type == "direct" ? "the direct solver's LU factors dominate"
+                                                            : "GMRES matrices and vectors")
+              << "; formula in docs/reliability.md), but only " << format_bytes(available)
+              << " is available (MemAvailable in /proc/meminfo" << (ranks > 1 ? ", summed over the hosts" : "")
+              << "). Reduce <Mesh/Cells per side>"
+              << (fits >= 2 ? " (at most " + std::to_string(fits) + " fits here)" : std::string())
+              << ", run on more machines with mpirun, or skip this check with --no-memory-check";
+      AssertThrow(false, ExcMessage(message.str()));
+    }
+
+    /// Errors go last: after the simulator (and its timer) is gone and stdout is flushed.
+    void print_error(const bool root, const std::string &message)
+    {
+      if (!root)
+        return;
+      std::cout.flush();
+      std::fflush(stdout);
+      std::cerr << "Error: " << message << std::endl;
+    }
   } // namespace
 
   int run_application(int argc, char **argv)
   {
-    const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    const bool               root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
     std::vector<std::string> args(argv + 1, argv + argc);
-    RunOptions               options;
-    for (int i = 0; i < argc; ++i)
-      options.command_line += (i ? " " : "") + std::string(argv[i]);
 
     if (!args.empty() && args[0] == "--print-parameters")
       {
+        const std::string format = args.size() > 1 ? args[1] : "prm";
+        if (args.size() > 2 || (format != "prm" && format != "json"))
+          {
+            print_error(root, "--print-parameters takes one optional format, prm or json (got <" +
+                                (args.size() > 2 ? args[2] : format) + ">)");
+            return 1;
+          }
         ParameterHandler prm;
         Parameters::declare(prm);
         if (root)
-          prm.print_parameters(std::cout, args.size() > 1 && args[1] == "json" ? ParameterHandler::JSON
-                                                                                : ParameterHandler::PRM);
+          prm.print_parameters(std::cout, format == "json" ? ParameterHandler::JSON : ParameterHandler::PRM);
         return 0;
       }
-    std::string                                      input;
-    std::vector<std::pair<std::string, std::string>> overrides;
-    for (std::size_t i = 0; i < args.size(); ++i)
-      if (const std::string &a = args[i]; a == "--quiet")
-        options.quiet = true;
-      else if (a == "--set" && i + 1 < args.size() && args[i + 1].find('=') != std::string::npos)
-        {
-          const std::string &assignment = args[++i];
-          const auto         eq         = assignment.find('=');
-          overrides.emplace_back(assignment.substr(0, eq), assignment.substr(eq + 1));
-        }
-      else if (a == "--help" || a == "-h" || !input.empty() || a.rfind("--", 0) == 0)
-        {
-          if (root)
-            std::cerr << usage;
-          return a == "--help" || a == "-h" ? 0 : 1;
-        }
-      else
-        input = a;
-    if (input.empty())
+    if (args.size() == 1 && args[0] == "--version")
       {
         if (root)
-          std::cerr << usage;
-        return 1;
+          std::cout << "membrane-flow " << code_version() << std::endl;
+        return 0;
+      }
+    if (args.size() == 1 && (args[0] == "--help" || args[0] == "-h"))
+      {
+        if (root)
+          std::cout << usage;
+        return 0;
       }
 
-    ParameterHandler prm;
-    Parameters       parameters;
+    CommandLine line;
     try
       {
-        read_parameter_file(input, prm, parameters, overrides);
-        std::ostringstream text;
-        prm.print_parameters(text, ParameterHandler::ShortPRM);
-        options.parameter_text = text.str();
-
-        Simulator         simulator(parameters, options);
-        return simulator.run().failed ? 2 : 0;
+        line = parse_command_line(args);
       }
-    catch (const std::exception &e)
+    catch (const UsageError &e)
       {
-        if (root)
-          std::cerr << "Error: " << clean_message(e) << std::endl;
+        print_error(root, std::string(e.what()) + " (membrane-flow --help for the usage)");
         return 1;
       }
+    for (int i = 0; i < argc; ++i)
+      line.options.command_line += (i ? " " : "") + std::string(argv[i]);
+
+    install_stop_signal_handlers();
+
+    // The simulator lives in this scope only: an error is caught while it still exists and
+    // printed after it is destroyed, so that nothing (its timer, deal.II's notes about
+    // destructors during an exception) comes after the message.
+    std::string error;
+    int         code = 0;
+    {
+      RunDirectory               directory; // holds the directory's lock until the run is over
+      std::unique_ptr<Simulator> simulator;
+      try
+        {
+          ParameterHandler prm;
+          Parameters       parameters;
+          read_parameter_file(line.input, prm, parameters, line.overrides);
+          std::ostringstream text;
+          prm.print_parameters(text, ParameterHandler::ShortPRM);
+          line.options.parameter_text = text.str();
+
+          if (line.check_memory)
+            check_memory(parameters, MPI_COMM_WORLD);
+          directory = claim_run_directory({parameters.output_directory, line.overwrite, parameters.resume_from,
+                                           {line.input}},
+                                          MPI_COMM_WORLD);
+          if (root && !directory.note().empty())
+            std::cout << directory.note() << std::endl;
+
+          simulator              = std::make_unique<Simulator>(parameters, line.options);
+          const RunResult result = simulator->run();
+          if (const int signal = stop_signal(); signal != 0)
+            {
+              code  = 128 + signal;
+              error = std::string("stopped by ") + stop_signal_name(signal) + " (" + result.stop_reason + ")";
+            }
+          else if (result.failed)
+            {
+              code  = 2;
+              error = "the run failed: " + result.stop_reason;
+            }
+        }
+      catch (const std::exception &e)
+        {
+          error = clean_message(e);
+          code  = 1;
+        }
+      simulator.reset();
+    }
+    if (!error.empty())
+      print_error(root, error);
+    return code;
   }
 } // namespace Membrane

@@ -1,7 +1,17 @@
 #include <membrane/parameters.h>
 #include <membrane/surface/initial_shapes.h>
 
+#include <deal.II/base/mpi.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
 
 namespace Membrane
 {
@@ -241,11 +251,6 @@ namespace Membrane
     material.transition_length = prm.get_double("Transition length");
     material.shape_mobility    = prm.get_double("Shape mobility");
     material.phase_mobility    = prm.get_double("Phase mobility");
-    for (const double phi : {-1.0, 1.0})
-      AssertThrow(material.bending_rigidity->value(phi) > 0,
-                  ExcMessage("Entry <Material/Bending rigidity>: kappa must be > 0 in both phases (got " +
-                             std::to_string(material.bending_rigidity->value(phi)) + " at phi = " +
-                             std::to_string(phi) + ")"));
     prm.leave_subsection();
 
     prm.enter_subsection("Time stepping");
@@ -305,18 +310,19 @@ namespace Membrane
     output_interval  = prm.get_double("Interval");
     write_vtu        = prm.get_bool("Write VTU");
     prm.leave_subsection();
+
+    check_parameter_combinations(*this);
   }
 
   void read_parameter_file(const std::string &filename, ParameterHandler &prm, Parameters &parameters,
                            const std::vector<std::pair<std::string, std::string>> &overrides)
   {
-    std::ifstream in(filename);
-    AssertThrow(in, ExcMessage("Cannot open the parameter file <" + filename + ">"));
+    check_input_file(filename);
     Parameters::declare(prm);
     prm.parse_input(filename, "", /*skip_undefined=*/false, /*assert_mandatory_entries_are_found=*/false);
     for (const auto &[path, value] : overrides)
       {
-        std::vector<std::string> parts = Utilities::split_string_list(path, '/');
+        std::vector<std::string> parts = split_entry_path(path, "--set " + path + "=" + value);
         const std::string        entry = parts.back();
         parts.pop_back();
         for (const auto &section : parts)
@@ -339,5 +345,166 @@ namespace Membrane
           prm.leave_subsection();
       }
     parameters.parse(prm);
+  }
+
+  void check_input_file(const std::string &filename, const std::string &what)
+  {
+    namespace fs = std::filesystem;
+    const std::string prefix = "Cannot open the " + what + " <" + filename + ">: ";
+    AssertThrow(!filename.empty(), ExcMessage("Cannot open the " + what + ": the file name is empty"));
+    std::error_code ec;
+    const auto      status = fs::status(filename, ec);
+    AssertThrow(fs::exists(status), ExcMessage(prefix + "no such file"));
+    AssertThrow(!fs::is_directory(status), ExcMessage(prefix + "it is a directory, not a file"));
+    AssertThrow(fs::is_regular_file(status),
+                ExcMessage(prefix + "it is not a regular file (a device, pipe or socket)"));
+    std::ifstream in(filename);
+    const int     error = errno;
+    AssertThrow(in, ExcMessage(prefix + (error ? std::strerror(error) : "cannot read it")));
+  }
+
+  std::vector<std::string> split_entry_path(const std::string &path, const std::string &override_text)
+  {
+    const auto trim = [](const std::string &text) {
+      const auto begin = text.find_first_not_of(" \t");
+      if (begin == std::string::npos)
+        return std::string();
+      return text.substr(begin, text.find_last_not_of(" \t") - begin + 1);
+    };
+    std::vector<std::string> parts;
+    std::size_t              start = 0;
+    while (true)
+      {
+        const auto slash = path.find('/', start);
+        parts.push_back(trim(path.substr(start, slash == std::string::npos ? std::string::npos : slash - start)));
+        if (slash == std::string::npos)
+          break;
+        start = slash + 1;
+      }
+    AssertThrow(!trim(path).empty(),
+                ExcMessage(override_text + ": the entry path is empty; write --set 'Section/Entry=value', e.g. "
+                                           "--set 'Material/Line tension=630'"));
+    AssertThrow(std::none_of(parts.begin(), parts.end(), [](const std::string &p) { return p.empty(); }),
+                ExcMessage(override_text + ": the entry path <" + path +
+                           "> has an empty part (a leading, trailing or doubled '/'); write --set "
+                           "'Section/Entry=value', e.g. --set 'Material/Line tension=630'"));
+    return parts;
+  }
+
+  namespace
+  {
+    std::string number(const double value)
+    {
+      std::ostringstream out;
+      out << std::setprecision(6) << value;
+      return out.str();
+    }
+
+    std::string where(const double phi)
+    {
+      return "phi = " + number(phi) + (phi == 1 ? " (phase A)" : phi == -1 ? " (phase B)" : "");
+    }
+  } // namespace
+
+  double initial_area_bound(const Parameters &parameters, bool *exact)
+  {
+    if (exact)
+      *exact = parameters.shape == "flat" || parameters.shape == "bump";
+    if (parameters.shape == "flat")
+      return 1;
+    if (parameters.shape == "bump")
+      return parameters.bump_area;
+    if (parameters.shape == "cosine modes")
+      {
+        // |grad z| <= G = sum 2 pi |A| |k|, so the area integral of sqrt(1 + |grad z|^2) <= sqrt(1 + G^2).
+        double gradient = 0;
+        for (const auto &mode : parse_cosine_modes(parameters.cosine_modes, "Initial shape/Cosine modes"))
+          gradient += 2 * M_PI * std::abs(mode.amplitude) * std::hypot(double(mode.k1), double(mode.k2));
+        return std::sqrt(1 + gradient * gradient);
+      }
+    return 0;
+  }
+
+  void check_parameter_combinations(const Parameters &parameters)
+  {
+    const Material &material = parameters.material;
+    // phi on [-1, 1] at 201 points, +-1 and 0 exactly.
+    // phi = +1, -1 (the pure phases, first, so that a bad Phase A / B value is named as
+    // such), then the 199 points strictly between: 201 samples of [-1, 1].
+    constexpr int samples = 200;
+    const auto    phi_at  = [](const int k) {
+      return k == 0 ? 1.0 : k == 1 ? -1.0 : -1.0 + 2.0 * (k - 1) / samples;
+    };
+
+    if (material.bending_rigidity)
+      for (int k = 0; k <= samples; ++k)
+        {
+          const double phi   = phi_at(k);
+          const double kappa = material.bending_rigidity->value(phi);
+          AssertThrow(std::isfinite(kappa) && kappa > 0,
+                      ExcMessage("Entry <Material/Bending rigidity>: kappa must be > 0 in both phases and everywhere "
+                                 "between them (phi in [-1, 1]); got kappa = " + number(kappa) + " at " + where(phi) +
+                                 ". Accepted: Phase A value > 0 and Phase B value > 0 (linear, tanh), or an "
+                                 "Expression that is positive on [-1, 1]"));
+        }
+
+    if (material.bending_rigidity && material.gaussian_rigidity)
+      for (int k = 0; k <= samples; ++k)
+        {
+          const double phi     = phi_at(k);
+          const double kappa   = material.bending_rigidity->value(phi);
+          const double kappa_g = material.gaussian_rigidity->value(phi);
+          AssertThrow(std::isfinite(kappa_g) && -2 * kappa < kappa_g && kappa_g <= 0,
+                      ExcMessage("Entries <Material/Gaussian rigidity> and <Material/Bending rigidity>: the bending "
+                                 "energy 1/2 kappa (H - H0)^2 + kappa_G K is bounded below only for -2 kappa < kappa_G "
+                                 "<= 0; at " + where(phi) + " kappa = " + number(kappa) + " and kappa_G = " +
+                                 number(kappa_g) + ", outside the accepted range (" + number(-2 * kappa) +
+                                 ", 0]. Choose the Gaussian rigidity's Phase A / Phase B values (or Expression) "
+                                 "inside (-2 kappa, 0] for every phi in [-1, 1]"));
+        }
+
+    const InitialPhaseOptions &phase = parameters.initial_phase;
+    if (phase.prescribe_mass)
+      {
+        bool         exact = false;
+        const double area  = initial_area_bound(parameters, &exact);
+        if (area > 0)
+          AssertThrow(std::isfinite(phase.mass) && std::abs(phase.mass) < area,
+                      ExcMessage("Entries <Initial phase/Mass> and <Initial phase/Prescribe mass>: a prescribed mass "
+                                 "(integral of phi0 over the initial surface) must lie strictly between -A and A, "
+                                 "where A is the initial area (phi = -1 and +1 are the pure phases); " +
+                                 std::string(exact ? "A = " + number(area) +
+                                                       (parameters.shape == "bump" ? " (<Initial shape/Bump area>)"
+                                                                                   : " (flat patch)")
+                                                   : "A <= " + number(area) + " (upper bound for these <Initial "
+                                                                              "shape/Cosine modes>)") +
+                                 ", so the accepted range is (" + number(-area) + ", " + number(area) + "); got Mass = " +
+                                 number(phase.mass)));
+      }
+
+    AssertThrow(!parameters.output_directory.empty(),
+                ExcMessage("Entry <Output/Directory>: must not be empty; name a directory for the run's files "
+                           "(e.g. results/run1)"));
+  }
+
+  MemoryEstimate estimate_memory(const Parameters &parameters, const unsigned int mpi_ranks,
+                                 const unsigned int cells_per_side)
+  {
+    MemoryEstimate estimate;
+    const double   n       = cells_per_side > 0 ? cells_per_side : parameters.cells_per_side;
+    const double   v       = (n + 1) * (n + 1);
+    const double   safety  = 1.5;
+    const double   per_rank = 200e6;
+    estimate.vertices      = v;
+    const double unknowns_per_vertex = (parameters.evolve_shape ? 7 : 0) + 2;
+    if (parameters.linear_solver.type == "direct")
+      {
+        const double fill = 400 * std::log2(std::max(v, 2.0)) / std::log2(1089.0); // factor entries per unknown
+        estimate.bytes    = safety * 12 * fill * v * unknowns_per_vertex;
+      }
+    else
+      estimate.bytes = safety * (parameters.evolve_shape ? 24e3 : 8e3) * v;
+    estimate.bytes += per_rank * std::max(1u, mpi_ranks);
+    return estimate;
   }
 } // namespace Membrane

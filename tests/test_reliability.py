@@ -1,0 +1,499 @@
+#!/usr/bin/python3
+"""Fault tests of membrane-flow itself: output directories, command lines, parameter
+combinations, memory, signals, error messages, --version (docs/reliability.md).
+
+Usage: test_reliability.py <membrane-flow> <tests/inputs/small.prm> [name-substring]
+
+Each check runs the real program on a fault and asserts its exit code and message (the
+message names the entry or option); error messages must be the last line of the output.
+Prints one line per check and a closing line "N passed, M failed"; exits 1 if any failed.
+About 50 s on 2 cores, four checks at a time (every run is tiny: 1-2 steps of small.prm, no VTU)."""
+import itertools
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from concurrent.futures import ThreadPoolExecutor
+
+if len(sys.argv) < 3:
+    sys.exit(__doc__)
+EXE = os.path.abspath(sys.argv[1])
+SMALL = os.path.abspath(sys.argv[2])
+ONLY = sys.argv[3] if len(sys.argv) > 3 else None
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TINY = ['--set', 'Time stepping/Maximum steps=1', '--set', 'Output/Write VTU=false']
+ENV = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+
+CHECKS = []
+RESULTS = []  # (name, passed, detail)
+WORK = tempfile.mkdtemp(prefix='membrane-reliability-')
+
+
+class Failure(Exception):
+    pass
+
+
+def check(function):
+    CHECKS.append(function)
+    return function
+
+
+def run(args, cwd=None, timeout=120):
+    """Run membrane-flow; (exit code, stdout and stderr merged in the order written)."""
+    result = subprocess.run([EXE] + args, cwd=cwd or WORK, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            stdin=subprocess.DEVNULL, timeout=timeout, env=ENV)
+    return result.returncode, result.stdout.decode('utf-8', 'replace')
+
+
+def require(condition, message, output=None):
+    if not condition:
+        raise Failure(message + (('\n    ' + '\n    '.join(output.rstrip().splitlines()[-12:])) if output else ''))
+
+
+def expect(args, code, regex, cwd=None, error_last=True):
+    """Exit code and a message matching regex; with error_last, the last line is the 'Error: ...'."""
+    got, output = run(args, cwd=cwd)
+    require(got == code, f'exit code {got}, expected {code}', output)
+    require(re.search(regex, output, re.S), f'output does not match /{regex}/', output)
+    if error_last:
+        lines = [line for line in output.splitlines() if line.strip()]
+        require(lines and lines[-1].startswith('Error:'), 'the error message is not the last line', output)
+        require('TimerOutput objects finalize' not in output, 'deal.II timer note in the output', output)
+    return output
+
+
+_COUNTER = itertools.count()
+
+
+def fresh(name):
+    """A path in the work directory that does not exist yet (unique: checks run in parallel)."""
+    return os.path.join(WORK, f'{name}-{next(_COUNTER)}')
+
+
+def out(directory):
+    return ['--set', f'Output/Directory={directory}']
+
+
+def snapshot(directory):
+    """{name: (size, mtime_ns, content)} of the files in a directory."""
+    state = {}
+    for name in sorted(os.listdir(directory)):
+        path = os.path.join(directory, name)
+        if os.path.isfile(path):
+            with open(path, 'rb') as f:
+                state[name] = (os.stat(path).st_mtime_ns, f.read())
+        else:
+            state[name] = 'dir'
+    return state
+
+
+def tiny_run(directory, *extra):
+    code, output = run(['--quiet'] + TINY + out(directory) + list(extra) + [SMALL])
+    require(code == 0, f'setting up: a tiny run into {directory} ended with exit code {code}', output)
+
+
+def last_step(directory):
+    with open(os.path.join(directory, 'statistics.txt')) as f:
+        rows = [line.split() for line in f if line.strip() and not line.startswith('#')]
+    return int(rows[-1][0])
+
+
+# ---- 1. a run owns its output directory -------------------------------------------------
+
+@check
+def rundir_rerun_refused_without_overwrite():
+    d = fresh('rerun')
+    tiny_run(d)
+    before = snapshot(d)
+    expect(['--quiet'] + TINY + out(d) + [SMALL], 1,
+           r'Output/Directory.*already holds the output of a run.*--overwrite')
+    require(snapshot(d) == before, 'the earlier run\'s files changed')
+
+
+@check
+def rundir_overwrite_deletes_only_run_files():
+    d = fresh('overwrite')
+    tiny_run(d, '--set', 'Checkpoint/Interval=1')
+    for name, text in (('summary.json.partial', '{'),            # left over by a killed run
+                       ('log.txt', 'the earlier run\'s log\n'),  # the earlier run's log
+                       ('case.json', '{}\n'), ('status.json', '{"exit_code": 0}\n')):  # a sweep's records
+        with open(os.path.join(d, name), 'w') as f:
+            f.write(text)
+    code, output = run(['--overwrite'] + TINY + out(d) + [SMALL])
+    require(code == 0, f'exit code {code}', output)
+    require(re.search(r'Deleted 7 files of an earlier run', output), 'no note of the 7 deleted files', output)
+    names = sorted(os.listdir(d))
+    require('summary.json.partial' not in names and 'checkpoint.txt' not in names,
+            f'old output files left: {names}')
+    if 'log.txt' in names:  # written anew by the run itself
+        with open(os.path.join(d, 'log.txt')) as f:
+            require('the earlier run' not in f.read(), 'the earlier run\'s log.txt was kept')
+    for name in ('case.json', 'status.json'):
+        require(name in names, f'the launcher file {name} was deleted')
+
+
+@check
+def rundir_overwrite_keeps_the_log_that_is_its_own_output():
+    d = fresh('own-log')
+    tiny_run(d)
+    log = os.path.join(d, 'log.txt')
+    with open(log, 'w') as f:  # membrane-flow --overwrite ... > d/log.txt
+        code = subprocess.run([EXE, '--overwrite'] + TINY + out(d) + [SMALL], cwd=WORK, stdout=f,
+                              stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, env=ENV, timeout=120).returncode
+    with open(log) as f:
+        text = f.read()
+    require(code == 0, f'exit code {code}', text)
+    require('Deleted 4 files of an earlier run' in text and 'Results:' in text,
+            'the run\'s own log.txt (its stdout) was deleted or is incomplete', text)
+
+
+@check
+def rundir_foreign_files_refused_even_with_overwrite():
+    d = fresh('foreign')
+    tiny_run(d)
+    with open(os.path.join(d, 'notes.md'), 'w') as f:
+        f.write('my notes\n')
+    before = snapshot(d)
+    for flags in ([], ['--overwrite']):
+        expect(['--quiet'] + flags + TINY + out(d) + [SMALL], 1,
+               r'Output/Directory.*did not write \(notes\.md\).*--overwrite never deletes them')
+        require(snapshot(d) == before, f'files changed or deleted with {flags}')
+
+
+@check
+def rundir_foreign_only_and_subdirectory_refused():
+    d = fresh('foreign-only')
+    os.makedirs(os.path.join(d, 'old-run'))
+    with open(os.path.join(d, 'data.csv'), 'w') as f:
+        f.write('1,2\n')
+    expect(['--quiet', '--overwrite'] + TINY + out(d) + [SMALL], 1, r'Output/Directory.*data\.csv, old-run')
+    require(sorted(os.listdir(d)) == ['data.csv', 'old-run'], 'the directory changed')
+
+
+@check
+def rundir_output_directory_is_a_file():
+    path = fresh('a-file')
+    with open(path, 'w') as f:
+        f.write('x\n')
+    expect(['--quiet', '--overwrite'] + TINY + out(path) + [SMALL], 1, r'Output/Directory.*is not a directory')
+
+
+@check
+def rundir_launcher_files_only_accepted():
+    d = fresh('sweep-case')
+    os.makedirs(d)
+    for name in ('case.json', 'log.txt'):
+        with open(os.path.join(d, name), 'w') as f:
+            f.write('{}\n')
+    tiny_run(d)
+    names = os.listdir(d)
+    require('case.json' in names and 'log.txt' in names and 'summary.json' in names, f'files: {names}')
+
+
+@check
+def rundir_resume_in_own_directory_keeps_its_files():
+    d = fresh('resume-own')
+    tiny_run(d, '--set', 'Checkpoint/Interval=1', '--set', 'Time stepping/Maximum steps=2')
+    code, output = run(['--quiet'] + TINY + out(d) + ['--set', 'Checkpoint/Interval=1', '--set',
+                       'Time stepping/Maximum steps=3', '--set', f'Checkpoint/Resume from={d}/checkpoint.txt',
+                       SMALL])
+    require(code == 0, f'exit code {code}', output)
+    require(last_step(d) == 3, f'statistics end at step {last_step(d)}, expected 3 (continued)')
+
+
+@check
+def rundir_resume_into_another_runs_directory_refused():
+    own, other, new = fresh('resume-a'), fresh('resume-b'), fresh('resume-new')
+    tiny_run(own, '--set', 'Checkpoint/Interval=1')
+    tiny_run(other)
+    before = snapshot(other)
+    resume = ['--set', f'Checkpoint/Resume from={own}/checkpoint.txt', '--set', 'Time stepping/Maximum steps=2']
+    expect(['--quiet'] + TINY + out(other) + resume + [SMALL], 1,
+           r'Checkpoint/Resume from.*is not the checkpoint\.txt of <Output/Directory>.*another run.*--overwrite')
+    require(snapshot(other) == before, 'the other run\'s files changed')
+    code, output = run(['--quiet'] + TINY + out(new) + resume + [SMALL])  # a new directory is fine
+    require(code == 0, f'resuming into a new directory: exit code {code}', output)
+
+
+# ---- 5. signals (and a directory in use by a running run) -------------------------------
+
+def long_run(directory):
+    process = subprocess.Popen([EXE, '--quiet', '--set', 'Output/Write VTU=false', '--set',
+                                'Time stepping/End time=1000'] + out(directory) + [SMALL], cwd=WORK, stdout=subprocess.PIPE,
+                               stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, env=ENV)
+    deadline = time.time() + 30
+    while not os.path.exists(os.path.join(directory, 'statistics.txt')):
+        if process.poll() is not None:
+            raise Failure(f'the long run ended early (exit code {process.returncode})\n    '
+                          + process.stdout.read().decode().rstrip().replace('\n', '\n    '))
+        require(time.time() < deadline, 'the long run did not start stepping within 30 s')
+        time.sleep(0.1)
+    return process
+
+
+def stop_with(sig):
+    d = fresh('signal-' + signal.Signals(sig).name)
+    process = long_run(d)
+    try:
+        time.sleep(0.5)
+        start = time.time()
+        process.send_signal(sig)
+        try:
+            process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            raise Failure(f'{signal.Signals(sig).name}: the process still runs after 10 s')
+        require(process.returncode != 0, f'{signal.Signals(sig).name}: exit code 0 (expected non-zero)')
+        return process.returncode, time.time() - start
+    finally:
+        if process.poll() is None:
+            process.kill()
+            process.wait()
+
+
+@check
+def rundir_directory_in_use_by_a_running_run_refused():
+    d = fresh('in-use')
+    process = long_run(d)
+    try:
+        expect(['--quiet', '--overwrite'] + TINY + out(d) + [SMALL], 1,
+               r'Output/Directory.*is in use by another membrane-flow run that is still running')
+        require(process.poll() is None, 'the running run ended')
+    finally:
+        process.kill()
+        process.wait()
+
+
+@check
+def signals_sigterm_ends_the_run():
+    stop_with(signal.SIGTERM)
+
+
+@check
+def signals_sigint_ends_the_run():
+    stop_with(signal.SIGINT)
+
+
+# ---- 2. command line and input path -----------------------------------------------------
+
+def expect_no_run(args, regex):
+    """Exit 1 with the message, and nothing created (no default run)."""
+    cwd = fresh('cli')
+    os.makedirs(cwd)
+    expect(args, 1, regex, cwd=cwd)
+    require(os.listdir(cwd) == [], f'the program created {os.listdir(cwd)}: it ran')
+
+
+@check
+def cli_set_without_equals():
+    expect_no_run(['--set', 'Material/Line tension', SMALL], r"--set Material/Line tension: expected 'Section/Entry=value'")
+
+
+@check
+def cli_set_without_argument():
+    expect_no_run([SMALL, '--set'], r'--set needs an argument')
+
+
+@check
+def cli_set_empty_entry_path():
+    expect_no_run(['--set', '=630', SMALL], r'--set =630: the entry path before .=. is empty')
+
+
+@check
+def cli_set_empty_path_parts():
+    for path in ('Material//Line tension', '/Line tension', 'Material/', 'Material/ /Line tension'):
+        expect_no_run(['--set', f'{path}=630', SMALL], re.escape(f'--set {path}=630') + r'.*(empty part|is empty)')
+
+
+@check
+def cli_set_unknown_entry():
+    expect_no_run(['--set', 'Material/Line tensoin=630', SMALL], r'--set Material/Line tensoin=630: no such entry')
+
+
+@check
+def cli_unknown_option():
+    for option in ('--overwirte', '-q', '--set-foo'):
+        expect_no_run([option, SMALL], re.escape(f'unknown option <{option}>'))
+
+
+@check
+def cli_input_is_a_directory():
+    expect_no_run([ROOT], r'Cannot open the parameter file <.*>: it is a directory')
+
+
+@check
+def cli_input_missing_or_not_regular():
+    expect_no_run([os.path.join(WORK, 'missing.prm')], r'Cannot open the parameter file <.*missing\.prm>: no such file')
+    expect_no_run(['/dev/null'], r'Cannot open the parameter file </dev/null>: it is not a regular file')
+
+
+@check
+def cli_two_inputs_or_none():
+    expect_no_run([SMALL, SMALL], r'more than one input file')
+    expect_no_run(['--quiet'], r'no input file given')
+
+
+@check
+def cli_print_parameters_bad_format():
+    expect_no_run(['--print-parameters', 'xml'], r'--print-parameters takes one optional format, prm or json')
+
+
+# ---- 3. values that make no sense together ----------------------------------------------
+
+GAUSS = 'Material/Gaussian rigidity/'
+KAPPA = 'Material/Bending rigidity/'
+
+
+def expect_combination(settings, regex):
+    d = fresh('combination')
+    args = ['--quiet'] + TINY + out(d)
+    for setting in settings:
+        args += ['--set', setting]
+    expect(args + [SMALL], 1, regex)
+    require(not os.path.exists(d), 'the output directory was created')
+
+
+@check
+def combination_gaussian_rigidity_positive():
+    expect_combination([GAUSS + 'Phase A value=0.5'],
+                       r'Material/Gaussian rigidity.*Material/Bending rigidity.*-2 kappa < kappa_G <= 0.*'
+                       r'phi = 1 \(phase A\).*kappa_G = 0\.5.*\(-2, 0\]')
+
+
+@check
+def combination_gaussian_rigidity_below_minus_two_kappa():
+    expect_combination([KAPPA + 'Phase B value=1.5', GAUSS + 'Phase B value=-3'],
+                       r'Material/Gaussian rigidity.*phi = -1 \(phase B\).*kappa = 1\.5.*kappa_G = -3.*\(-3, 0\]')
+
+
+@check
+def combination_gaussian_expression_positive_between_phases():
+    expect_combination([GAUSS + 'Law=expression', GAUSS + 'Expression=1 - 2*phi^2',
+                        GAUSS + 'Derivative expression=-4*phi'],
+                       r'Material/Gaussian rigidity.*phi = -0\.7 kappa = 1 and kappa_G = 0\.02')
+
+
+@check
+def combination_bending_rigidity_vanishes_between_phases():
+    expect_combination([KAPPA + 'Law=expression', KAPPA + 'Expression=phi^2', KAPPA + 'Derivative expression=2*phi'],
+                       r'Material/Bending rigidity.*kappa must be > 0.*kappa = 0 at phi = 0\b')
+
+
+@check
+def combination_bending_rigidity_negative_phase():
+    expect_combination([KAPPA + 'Phase B value=-1'],
+                       r'Material/Bending rigidity.*kappa must be > 0.*kappa = -1 at phi = -1 \(phase B\)')
+
+
+@check
+def combination_mass_outside_bump_area():
+    expect_combination(['Initial phase/Prescribe mass=true', 'Initial phase/Mass=1.2'],
+                       r'Initial phase/Mass.*Prescribe mass.*A = 1\.1 \(<Initial shape/Bump area>\).*'
+                       r'\(-1\.1, 1\.1\); got Mass = 1\.2')
+
+
+@check
+def combination_mass_of_a_pure_phase_on_the_flat_patch():
+    expect_combination(['Initial shape/Shape=flat', 'Initial phase/Prescribe mass=true', 'Initial phase/Mass=-1'],
+                       r'Initial phase/Mass.*A = 1 \(flat patch\).*\(-1, 1\); got Mass = -1')
+
+
+@check
+def combination_mass_beyond_cosine_modes_area_bound():
+    expect_combination(['Initial shape/Shape=cosine modes', 'Initial shape/Cosine modes=0.1 1 0',
+                        'Initial phase/Prescribe mass=true', 'Initial phase/Mass=5'],
+                       r'Initial phase/Mass.*A <= 1\.18.*upper bound.*got Mass = 5')
+
+
+def accepted(path):
+    """The shipped input runs (one step): the checks above refuse nothing that is in use."""
+    def check_input():
+        code, output = run(['--quiet'] + TINY + ['--set', 'Checkpoint/Interval=0']
+                           + out(fresh('accepted')) + [path])
+        require(code == 0, f'{os.path.relpath(path, ROOT)} is refused (exit code {code})', output)
+    check_input.__name__ = 'accepted_' + os.path.splitext(os.path.basename(path))[0]
+    return check_input
+
+
+for _path in sorted(os.path.join(ROOT, 'experiments', f) for f in os.listdir(os.path.join(ROOT, 'experiments'))
+                    if f.endswith('.prm')) + [SMALL, os.path.join(os.path.dirname(SMALL), 'sorting.prm')]:
+    check(accepted(_path))
+
+
+# ---- 4. a mesh far too large --------------------------------------------------------------
+
+@check
+def memory_mesh_far_too_large():
+    start = time.time()
+    d = fresh('huge')
+    expect(['--quiet', '--set', 'Mesh/Cells per side=4096'] + out(d) + [SMALL], 1,
+           r'Mesh/Cells per side> = 4096: the run needs an estimated [0-9.]+ TB of memory.*'
+           r'only [0-9.]+ [GT]B is available \(MemAvailable in /proc/meminfo.*--no-memory-check')
+    require(time.time() - start < 10, f'the refusal took {time.time() - start:.1f} s (anything allocated?)')
+    require(not os.path.exists(d), 'the output directory was created')
+
+
+# ---- 7. errors are the last thing on screen; exit codes -----------------------------------
+
+@check
+def errors_failed_run_message_after_timer_table():
+    d = fresh('failed')
+    output = expect(['--set', 'Cahn-Hilliard/Scheme=explicit', '--set', 'Time stepping/Adaptive=false', '--set',
+                     'Time stepping/Time step=1e-2', '--set', 'Time stepping/End time=0.05', '--set',
+                     'Output/Write VTU=false'] + out(d) + [SMALL], 2,
+                    r'\+-{10}.*Error: the run failed: step failed at t = .*energy would rise')
+    require(os.path.exists(os.path.join(d, 'summary.json')), 'no summary.json of the failed run', output)
+
+
+@check
+def errors_input_error_inside_the_run_is_last():
+    expect(['--set', f'Checkpoint/Resume from={WORK}/nonexistent-checkpoint.txt'] + TINY
+           + out(fresh('bad-checkpoint')) + [SMALL], 1, r'Error: .*Checkpoint/Resume from.*cannot open the checkpoint')
+
+
+# ---- 8. --version, --help ---------------------------------------------------------------
+
+@check
+def version_and_help():
+    code, output = run(['--version'])
+    require(code == 0 and re.fullmatch(r'membrane-flow \S+\n', output), f'--version: exit code {code}', output)
+    code, output = run(['--help'])
+    require(code == 0 and output.startswith('Usage: membrane-flow') and '--overwrite' in output,
+            f'--help: exit code {code}', output)
+
+
+def run_check(function):
+    name = function.__name__.replace('_', '.', 1)
+    t0 = time.time()
+    try:
+        function()
+        return name, True, f'({time.time() - t0:.1f} s)'
+    except Failure as e:
+        return name, False, str(e)
+    except Exception as e:  # a broken check is a failure too, never a crash of the script
+        return name, False, f'{type(e).__name__}: {e}'
+
+
+def main():
+    start = time.time()
+    selected = [f for f in CHECKS if not ONLY or ONLY in f.__name__.replace('_', '.', 1)]
+    try:
+        # Most of a check's time is the start-up of MPI, not computation: run 4 at a time.
+        with ThreadPoolExecutor(max_workers=4) as pool:
+            for name, ok, detail in pool.map(run_check, selected):
+                RESULTS.append((name, ok, detail))
+                print(f'ok    {name} {detail}' if ok else f'FAIL  {name}: {detail}', flush=True)
+    finally:
+        shutil.rmtree(WORK, ignore_errors=True)
+    passed = sum(1 for _, ok, _ in RESULTS if ok)
+    failed = len(RESULTS) - passed
+    print(f'time: {time.time() - start:.1f} s')
+    print(f'{passed} passed, {failed} failed')
+    return 1 if failed or not RESULTS else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
