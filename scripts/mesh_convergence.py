@@ -63,7 +63,7 @@ class Case:
     def label(self):
         if self.kind == 'uniform':
             return f'uniform {self.value}'
-        return f'adaptive {self.value} ({CELLS_PER_XI[self.value]:g})'
+        return f'adaptive {self.value} ({CELLS_PER_XI[self.value]:g} per xi)'
 
     def settings(self, end_time):
         s = {'Material/Line tension': fmt_sigma(self.sigma),
@@ -137,7 +137,7 @@ class Runner:
                     'environment': 'OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1', 'cwd': ROOT})
         start = time.time()
         timed_out = False
-        with open(os.path.join(case.dir, 'log.txt'), 'w') as log:
+        with open(os.path.join(case.dir, 'output.txt'), 'w') as log:
             process = subprocess.Popen(command, cwd=ROOT, env=env, stdout=log, stderr=subprocess.STDOUT,
                                        stdin=subprocess.DEVNULL, start_new_session=True)
             with self.lock:
@@ -232,13 +232,15 @@ def read_case(case):
         except Exception:  # noqa: BLE001 -- a half-written or empty file: report without history
             stats = None
     warnings = []
-    log = os.path.join(case.dir, 'log.txt')
-    if os.path.exists(log):
-        with open(log, errors='replace') as f:
-            for line in f:
-                line = line.strip()
-                if line and WARNING_RE.search(line) and not line.startswith('Results:'):
-                    warnings.append(line)
+    for name in ('output.txt', 'log.txt'):  # the run's stdout/stderr as captured here, and its own log
+        log = os.path.join(case.dir, name)
+        if os.path.exists(log):
+            with open(log, errors='replace') as f:
+                for line in f:
+                    line = line.strip()
+                    if line and WARNING_RE.search(line) and not line.startswith('Results:') \
+                            and line not in warnings:
+                        warnings.append(line)
     return {'case': case, 'summary': summary, 'status': status, 'stats': stats, 'warnings': warnings}
 
 
@@ -408,6 +410,27 @@ def conclusions(results, sigma, levels):
         if stops != ['end time']:
             out.append('Stop reasons: ' + '; '.join(f'{r["case"].label}: {r["summary"].get("stop_reason")} at t = '
                                                     f'{r["summary"].get("time"):.3g}' for r in done) + '.')
+    # sudden jumps of the bud observables (a change of shape cannot happen in one step of tau <= 1e-2)
+    jumps = []
+    for r in rows.values():
+        st = r['stats']
+        if st is None or len(st['time']) < 2 or 'domain_protrusion' not in st:
+            continue
+        dp = np.diff(st['domain_protrusion'])
+        flip = np.diff(np.sign(st['bud_direction'])) != 0 if 'bud_direction' in st else np.zeros_like(dp, bool)
+        adapt = np.diff(st['adaptations']) != 0 if 'adaptations' in st else np.zeros_like(dp, bool)
+        for i in np.nonzero((np.abs(dp) > 0.25) | flip)[0]:
+            jumps.append(f'{r["case"].label} at step {int(st["step"][i + 1])} (t = {st["time"][i + 1]:.4g}'
+                         f'{", the first step after a mesh adaptation" if adapt[i] else ""}): domain_protrusion '
+                         f'{st["domain_protrusion"][i]:.3f} -> {st["domain_protrusion"][i + 1]:.3f}, bud_direction '
+                         f'{st["bud_direction"][i]:+.0f} -> {st["bud_direction"][i + 1]:+.0f}, bud_height '
+                         f'{st["bud_height"][i]:.3f} -> {st["bud_height"][i + 1]:.3f}, while the energy changes by '
+                         f'{st["energy"][i + 1] - st["energy"][i]:+.3g}')
+    if jumps:
+        out.append('**Bud observables jump within one step** (not a plausible change of shape at tau <= 1e-2, '
+                   'so the final outcome and protrusion of such a run are suspect): ' + '; '.join(jumps) + '.')
+    else:
+        out.append('No run has a one-step jump of domain_protrusion above 0.25 or a flip of bud_direction.')
     # adaptation energy jumps
     for lvl in sorted(levels):
         b = rows.get(('adaptive', lvl))
@@ -427,7 +450,6 @@ def conclusions(results, sigma, levels):
                     first = cum[st['time'] <= 0.05][-1] if np.any(st['time'] <= 0.05) else 0.0
                     text += (f'; {fmt(first)} of it by t = 0.05 (the initial sharpening of phi); largest single '
                              f'jumps ' + ', '.join(f'{inc[i]:+.3g} at t = {st["time"][i + 1]:.3g}' for i in big))
-                    drop = -np.diff(st['energy'])  # energy decrease per step, jumps included
                     text += (f'. For scale: the energy falls by {st["energy"][0] - st["energy"][-1]:.3g} over the '
                              f'run')
             out.append(text + '.')
@@ -462,7 +484,7 @@ def plot(results, sigmas, levels):
     fig.savefig(os.path.join(ROOT, FIGURE), dpi=110)
     plt.close(fig)
 
-    fig, axes = plt.subplots(len(sigmas), 2, figsize=(11, 3.6 * len(sigmas)), squeeze=False)
+    fig, axes = plt.subplots(len(sigmas), 3, figsize=(15, 3.8 * len(sigmas)), squeeze=False)
     styles = {('uniform', 32): ':', ('uniform', 48): '--', ('uniform', 64): '-'}
     for i, s in enumerate(sigmas):
         for r in results:
@@ -472,15 +494,13 @@ def plot(results, sigmas, levels):
             ls = styles.get((c.kind, c.value), '-')
             lw = 1.2 if c.kind == 'uniform' else 1.8
             color = 'k' if c.kind == 'uniform' else {1: 'tab:orange', 2: 'tab:green', 3: 'tab:purple'}[c.value]
-            axes[i, 0].plot(st['time'], st['energy'], ls, color=color, lw=lw, label=c.label)
+            late = st['time'] >= 0.05
+            axes[i, 0].plot(st['time'][late], st['energy'][late], ls, color=color, lw=lw, label=c.label)
+            axes[i, 1].plot(st['time'], st['domain_protrusion'], ls, color=color, lw=lw, label=c.label)
             cells = st['cells'] if 'cells' in st else np.full_like(st['time'], c.value ** 2)
-            axes[i, 1].plot(st['time'], cells, ls, color=color, lw=lw, label=c.label)
-        axes[i, 0].set_ylabel('energy')
-        axes[i, 0].set_yscale('log')
-        axes[i, 1].set_ylabel('cells')
-        axes[i, 0].set_title(f'sigma = {fmt_sigma(s)}: energy')
-        axes[i, 1].set_title(f'sigma = {fmt_sigma(s)}: cells')
-        for ax in axes[i]:
+            axes[i, 2].plot(st['time'], cells, ls, color=color, lw=lw, label=c.label)
+        for ax, what in zip(axes[i], ['energy (t >= 0.05)', 'domain_protrusion', 'cells']):
+            ax.set_title(f'sigma = {fmt_sigma(s)}: {what}')
             ax.set_xlabel('t')
             ax.grid(True, alpha=0.3)
             ax.legend(fontsize=7)
@@ -498,7 +518,10 @@ def write_report(results, sigmas, levels, command, end_time, exe):
              'input mesh with local refinement (`Mesh/Maximum refinement level` L with `Mesh/Interface cells per xi`'
              ' ' + ', '.join(f'{CELLS_PER_XI[l]:g} for L = {l}' for l in sorted(levels)) +
              '; the other refinement entries at their defaults: adaptation every 10 accepted steps, curvature '
-             'resolution 0.3). VTU output and checkpoints are off; one case per core.',
+             'resolution 0.3). At its finest level L the adaptive mesh has cells of 1/(32 x 2^L) in the parameter '
+             'plane: 1/64 (as uniform 64) for L = 1, 1/128 for L = 2, 1/256 for L = 3; so level 2 resolves the '
+             'interface more finely than any of the uniform meshes. VTU output and checkpoints are off; one case '
+             'per core.',
              '', 'Regenerate everything (runs only the cases without a `summary.json`, then rewrites this page and '
              'its figures):', '', '```sh', command, '```', '']
     if end_time is not None and end_time != FILE_END_TIME:
@@ -521,7 +544,8 @@ def write_report(results, sigmas, levels, command, end_time, exe):
               'Final energy against the number of cells at the end of the run (log scale). Lines: uniform 32, 48, 64; '
               'open markers: adaptive runs.', '',
               f'![energy and cells against time]({os.path.relpath(HISTORY, "docs")})', '',
-              'Energy (log scale) and number of cells against time for every case.', '']
+              'Energy (from t = 0.05, after the initial sharpening of phi), domain_protrusion and number of '
+              'cells against time for every case.', '']
     # costs
     parts += ['## Cost', '', '| sigma | mesh | exit code | wall (s, own clock) | CPU (s) | peak memory (MB) | '
               'adaptations | adaptation energy jump |', '|---|---|---|---|---|---|---|---|']
@@ -591,6 +615,8 @@ def main():
         command += f' --sigmas {args.sigmas}'
     if args.end_time is not None:
         command += f' --end-time {args.end_time:g}'
+    if args.output != DEFAULT_OUTPUT:
+        command += f' --output {args.output}'
     completed = True
     if not args.report_only:
         if not os.access(exe, os.X_OK):

@@ -7,11 +7,11 @@ cd "$(dirname "$0")/.."
 exe=${1:-build/membrane-flow}
 for f in experiments/7*.prm; do
   echo "running $f"
-  "$exe" --quiet "$f" | tail -n 3
+  "$exe" --quiet --overwrite "$f" | tail -n 3
 done
-"$exe" --quiet --set "Material/Line tension=1000" --set "Output/Directory=results/7.4C-sigma1000" \
+"$exe" --quiet --overwrite --set "Material/Line tension=1000" --set "Output/Directory=results/7.4C-sigma1000" \
   experiments/7.4C-sigma630.prm | tail -n 3
-"$exe" --quiet --set "Material/Line tension=1000" --set "Output/Directory=results/7.4D-sigma1000" \
+"$exe" --quiet --overwrite --set "Material/Line tension=1000" --set "Output/Directory=results/7.4D-sigma1000" \
   experiments/7.4D-small-domain.prm | tail -n 3
 /usr/bin/python3 scripts/make_experiment_docs.py results docs
 /usr/bin/python3 scripts/make_gallery.py results docs

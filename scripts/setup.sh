@@ -5,6 +5,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install_dependencies.sh
 ./scripts/build.sh
-./build/membrane-flow experiments/default.prm
+./build/membrane-flow --overwrite experiments/default.prm
 echo
 echo "Open results/default/surface.pvd in ParaView; statistics in results/default/statistics.txt."

@@ -2,6 +2,7 @@
 #include <membrane/io/checkpoint.h>
 #include <membrane/io/field_output.h>
 #include <membrane/io/log_file.h>
+#include <membrane/io/stop_signal.h>
 #include <membrane/simulator.h>
 #include <membrane/surface/grid_control.h>
 #include <membrane/surface/initial_shapes.h>
@@ -207,11 +208,21 @@ namespace Membrane
 
     RunResult  result{"end time", false, ""};
     const auto finished = [&]() { return time >= parameters.end_time * (1 - 1e-12); };
+    bool interrupted = false;
     while (!finished())
       {
         if (step >= parameters.max_steps)
           {
             result.stop_reason = "maximum steps";
+            break;
+          }
+        // SIGTERM/SIGINT: every rank stops at the same step and the state is kept.
+        if (Utilities::MPI::max(stop_requested() ? 1 : 0, communicator) > 0)
+          {
+            interrupted        = true;
+            result.stop_reason = std::string("interrupted by ") + stop_signal_name(stop_signal()) + " at t = " +
+                                 format(time) + "; a checkpoint of the last state is written";
+            result.failed      = true;
             break;
           }
         const double    trial         = std::min(step_control.tau(), parameters.end_time - time);
@@ -288,7 +299,7 @@ namespace Membrane
           }
       }
     write_fields();
-    if (parameters.checkpoint_interval > 0)
+    if (parameters.checkpoint_interval > 0 || interrupted)
       write_checkpoint();
     if (root)
       stats.write(parameters.output_directory + "/statistics.txt");

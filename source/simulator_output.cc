@@ -2,6 +2,7 @@
 // and the run's records (run_info.json, summary.json). Part of Simulator.
 #include <membrane/io/atomic_file.h>
 #include <membrane/io/checkpoint.h>
+#include <membrane/io/json.h>
 #include <membrane/simulator.h>
 
 #include <deal.II/base/utilities.h>
@@ -111,13 +112,21 @@ namespace Membrane
       return;
     const std::string dir = parameters.output_directory + "/";
     write_file_atomically(dir + "parameters.prm", options.parameter_text);
-    std::ostringstream info;
-    info << "{\n  \"code_version\": \"" << code_version() << "\",\n"
-         << "  \"command\": \"" << options.command_line << "\",\n"
-         << "  \"mpi_ranks\": " << Utilities::MPI::n_mpi_processes(communicator) << ",\n"
-         << "  \"cells\": " << triangulation.n_global_active_cells() << ",\n"
-         << "  \"vertices_dofs\": " << surface.scalar_space().dof_handler().n_dofs() << ",\n"
-         << "  \"parameter_file\": \"parameters.prm\"\n}\n";
+    JsonObject info;
+    info.add("code_version", code_version())
+      .add("command", options.command_line)
+      .add("mpi_ranks", Utilities::MPI::n_mpi_processes(communicator))
+      .add("cells", triangulation.n_global_active_cells())
+      .add("vertices_dofs", surface.scalar_space().dof_handler().n_dofs())
+      .add("parameter_file", "parameters.prm");
+    if (!parameters.resume_from.empty())
+      {
+        info.add("resumed_from", parameters.resume_from);
+        std::string changes = "[";
+        for (const auto &change : changed_on_resume)
+          changes += (changes.size() > 1 ? ", " : "") + json_string(change);
+        info.add_raw("changed_on_resume", changes + "]");
+      }
     write_file_atomically(dir + "run_info.json", info.str());
   }
 
@@ -125,19 +134,21 @@ namespace Membrane
   {
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
-    std::ostringstream out;
-    out << std::setprecision(16) << "{\n  \"code_version\": \"" << code_version() << "\",\n"
-        << "  \"stop_reason\": \"" << result.stop_reason << "\",\n  \"failed\": " << (result.failed ? "true" : "false")
-        << ",\n  \"outcome\": \"" << result.outcome << "\",\n  \"steps\": " << step
-        << ",\n  \"rejected_steps\": " << rejected_steps << ",\n  \"time\": " << time
-        << ",\n  \"wall_seconds\": " << wall_seconds << ",\n  \"grid_control_refused_fraction\": "
-        << (step > 0 ? double(grid_control_skipped) / step : 0.0);
+    JsonObject summary;
+    summary.add("code_version", code_version())
+      .add("stop_reason", result.stop_reason)
+      .add("failed", result.failed)
+      .add("outcome", result.outcome)
+      .add("steps", step)
+      .add("rejected_steps", rejected_steps)
+      .add("time", time)
+      .add("wall_seconds", wall_seconds)
+      .add("grid_control_refused_fraction", step > 0 ? double(grid_control_skipped) / step : 0.0);
     for (const char *c : {"energy", "bending_energy", "gaussian_energy", "gradient_energy", "well_energy", "area",
                           "area_drift", "mass", "mass_drift", "bud_height", "neck_radius", "bud_radius", "neck_ratio",
                           "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error", "cells",
                           "adaptations", "adaptation_energy_jump"})
-      out << ",\n  \"" << c << "\": " << stats.last(c);
-    out << "\n}\n";
-    write_file_atomically(parameters.output_directory + "/summary.json", out.str());
+      summary.add(c, stats.last(c));
+    write_file_atomically(parameters.output_directory + "/summary.json", summary.str());
   }
 } // namespace Membrane

@@ -12,6 +12,7 @@ import itertools
 import os
 import re
 import shutil
+import json
 import signal
 import subprocess
 import sys
@@ -246,7 +247,17 @@ def stop_with(sig):
             process.wait(timeout=10)
         except subprocess.TimeoutExpired:
             raise Failure(f'{signal.Signals(sig).name}: the process still runs after 10 s')
-        require(process.returncode != 0, f'{signal.Signals(sig).name}: exit code 0 (expected non-zero)')
+        name = signal.Signals(sig).name
+        require(process.returncode == 128 + sig, f'{name}: exit code {process.returncode} (expected {128 + sig})')
+        # The run stopped between steps and kept its state: summary with the reason, a
+        # checkpoint to resume from, and the message as the last line on the screen.
+        with open(os.path.join(d, 'summary.json')) as f:
+            summary = json.load(f)
+        require(summary['stop_reason'].startswith(f'interrupted by {name}'),
+                f'{name}: stop reason {summary["stop_reason"]!r}')
+        require(os.path.exists(os.path.join(d, 'checkpoint.txt')), f'{name}: no checkpoint written')
+        last = process.stdout.read().decode().rstrip().splitlines()[-1]
+        require(f'stopped by {name}' in last, f'{name}: last line {last!r}')
         return process.returncode, time.time() - start
     finally:
         if process.poll() is None:
@@ -275,6 +286,42 @@ def signals_sigterm_ends_the_run():
 @check
 def signals_sigint_ends_the_run():
     stop_with(signal.SIGINT)
+
+
+# ---- records and checkpoints of the simulator ---------------------------------------------
+
+@check
+def records_are_valid_json_whatever_the_arguments():
+    d = fresh('quote"back\\slash')
+    got, output = run(['--quiet'] + TINY + out(d) + [SMALL])
+    require(got == 0, f'exit code {got}', output)
+    with open(os.path.join(d, 'run_info.json')) as f:
+        info = json.load(f)
+    with open(os.path.join(d, 'summary.json')) as f:
+        json.load(f)
+    require('quote"back\\slash' in info['command'], f'command not kept: {info["command"]!r}')
+
+
+@check
+def resume_records_changed_parameters_and_total_wall_time():
+    d = fresh('resume')
+    first = ['--quiet', '--set', 'Output/Write VTU=false', '--set', 'Checkpoint/Interval=3'] + out(d)
+    got, output = run(first + ['--set', 'Time stepping/Maximum steps=3', SMALL])
+    require(got == 0, f'first segment: exit code {got}', output)
+    with open(os.path.join(d, 'summary.json')) as f:
+        first_wall = json.load(f)['wall_seconds']
+    got, output = run(first + ['--set', 'Time stepping/Maximum steps=6', '--set', 'Material/Line tension=120',
+                               '--set', f'Checkpoint/Resume from={d}/checkpoint.txt', SMALL])
+    require(got == 0, f'resumed segment: exit code {got}', output)
+    require('Material/Line tension: 90 -> 120' in output, 'the changed line tension is not reported', output)
+    with open(os.path.join(d, 'run_info.json')) as f:
+        info = json.load(f)
+    require('Material/Line tension: 90 -> 120' in info.get('changed_on_resume', []),
+            f'run_info.json: changed_on_resume = {info.get("changed_on_resume")!r}')
+    with open(os.path.join(d, 'summary.json')) as f:
+        summary = json.load(f)
+    require(summary['steps'] == 6 and summary['wall_seconds'] > first_wall,
+            f'summary after resume: steps {summary["steps"]}, wall {summary["wall_seconds"]} (first {first_wall})')
 
 
 # ---- 2. command line and input path -----------------------------------------------------

@@ -2,6 +2,9 @@
 
 #include <iostream>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace Membrane
 {
   namespace
@@ -41,11 +44,25 @@ namespace Membrane
     };
   } // namespace
 
+  namespace
+  {
+    /// Whether the standard output already goes to `path` (a sweep that captures
+    /// a case's output in its log.txt): then the log needs no second copy.
+    bool stdout_is(const std::string &path)
+    {
+      struct stat out, log;
+      return fstat(STDOUT_FILENO, &out) == 0 && stat(path.c_str(), &log) == 0 && out.st_dev == log.st_dev &&
+             out.st_ino == log.st_ino;
+    }
+  } // namespace
+
   LogFile::LogFile(const std::string &path)
-    : file(path, std::ios::app)
-    , out_original(std::cout.rdbuf())
+    : out_original(std::cout.rdbuf())
     , err_original(std::cerr.rdbuf())
   {
+    if (stdout_is(path))
+      return;
+    file.open(path, std::ios::app);
     if (!file)
       {
         std::cerr << "Warning: cannot write the log file <" << path << ">; output goes to the terminal only\n";

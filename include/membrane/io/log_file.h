@@ -2,7 +2,8 @@
 // log.txt: everything the run prints (progress, warnings, the timer table) also goes
 // to a file in its output directory. While a LogFile lives, std::cout and std::cerr
 // of this process write to both the terminal and the file (appended, so a resumed
-// run's log continues the earlier one).
+// run's log continues the earlier one). If the standard output already goes to
+// that file (a sweep capturing a case's output there), nothing is duplicated.
 
 #include <fstream>
 #include <memory>
