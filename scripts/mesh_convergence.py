@@ -81,8 +81,10 @@ class Case:
             s['Mesh/Interface cells per xi'] = f'{CELLS_PER_XI[self.value]:g}'
         return s
 
-    def command(self, exe, end_time):
+    def command(self, exe, end_time, overwrite=True):
         cmd = [exe, '--quiet']
+        if overwrite:  # an interrupted case is rerun from scratch (older binaries lack the option)
+            cmd.append('--overwrite')
         for k, v in self.settings(end_time).items():
             cmd += ['--set', f'{k}={v}']
         return cmd + [BASE]
@@ -115,6 +117,7 @@ def make_cases(sigmas, levels, output):
 class Runner:
     def __init__(self, exe, end_time, timeout):
         self.exe, self.end_time, self.timeout = exe, end_time, timeout
+        self.overwrite = supports_overwrite(exe)
         self.lock = threading.Lock()
         self.running = set()
         self.stopping = False
@@ -130,7 +133,7 @@ class Runner:
                 if os.path.isfile(path):
                     os.remove(path)
         os.makedirs(case.dir, exist_ok=True)
-        command = case.command(self.exe, self.end_time)
+        command = case.command(self.exe, self.end_time, self.overwrite)
         env = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
         write_json(os.path.join(case.dir, 'case.json'),
                    {'command': command, 'shell': ' '.join(shlex.quote(c) for c in command),
@@ -176,6 +179,15 @@ class Runner:
         with self.lock:
             for p in list(self.running):
                 terminate(p)
+
+
+def supports_overwrite(exe):
+    """Whether the executable knows --overwrite (its --help names it; builds before it print only a usage)."""
+    try:
+        result = subprocess.run([exe, '--help'], capture_output=True, text=True, timeout=60, stdin=subprocess.DEVNULL)
+    except (OSError, subprocess.TimeoutExpired):
+        return True
+    return '--overwrite' in result.stdout + result.stderr
 
 
 def terminate(process):
@@ -609,7 +621,7 @@ def main():
     command = 'scripts/mesh_convergence.py'
     if args.workers != 2:
         command += f' --workers {args.workers}'
-    command += f' --exe {args.exe}' if args.exe != parser.get_default('exe') else ''
+    # the page names the command a user runs (the default executable), whichever binary made the numbers
     command += f' --levels {",".join(map(str, levels))}'
     if args.sigmas != parser.get_default('sigmas'):
         command += f' --sigmas {args.sigmas}'
