@@ -364,22 +364,23 @@ def conclusions(results, sigma, levels):
             ea, er = a['summary']['energy'], ref['summary']['energy']
             rel = (ea - er) / er
             wa, wr = a['summary']['wall_seconds'], ref['summary']['wall_seconds']
-            ca, cr = (a['status'] or {}).get('cpu_seconds'), (ref['status'] or {}).get('cpu_seconds')
-            cpu = f' (CPU time {ca:.0f} s against {cr:.0f} s, {ca / cr:.2f}x)' if ca and cr else ''
             verdict = 'agrees with' if abs(rel) <= 0.01 else 'does **not** agree with'
-            out.append(f'Adaptive level {finest} ({CELLS_PER_XI[finest]:g} cells per xi, {a["summary"]["cells"]} '
-                       f'final cells) {verdict} uniform 64 (4096 cells) within 1 %: final energy {ea:.4f} against '
-                       f'{er:.4f}, a difference of {100 * rel:+.2f} %. Its wall time is {wa:.0f} s against '
-                       f'{wr:.0f} s, {wa / wr:.2f} times that of uniform 64{cpu}.')
+            out.append(f'Adaptive level {finest}, the finest interface resolution run ({CELLS_PER_XI[finest]:g} cells '
+                       f'per xi), {verdict} uniform 64 within 1 %: final energy {ea:.4f} against {er:.4f} '
+                       f'({100 * rel:+.2f} %), at {wa / wr:.2f} times its wall time ({wa:.0f} s against {wr:.0f} s).')
             for lvl in sorted(levels):
-                if lvl == finest:
-                    continue
                 b = ok.get(('adaptive', lvl))
-                if b:
-                    eb = b['summary']['energy']
-                    out.append(f'Adaptive level {lvl} ({CELLS_PER_XI[lvl]:g} cells per xi): {eb:.4f}, '
-                               f'{100 * (eb - er) / er:+.2f} % from uniform 64 at '
-                               f'{b["summary"]["wall_seconds"] / wr:.2f} times its wall time.')
+                if not b:
+                    continue
+                sb, sr = b['summary'], ref['summary']
+                eb = sb['energy']
+                cb, cr = (b['status'] or {}).get('cpu_seconds'), (ref['status'] or {}).get('cpu_seconds')
+                cpu = f', CPU time {cb:.0f} s against {cr:.0f} s ({cb / cr:.2f}x)' if cb and cr else ''
+                out.append(f'Adaptive level {lvl} ({CELLS_PER_XI[lvl]:g} per xi, {sb["cells"]} final cells against '
+                           f'4096): energy {100 * (eb - er) / er:+.2f} % from uniform 64, of which line energy '
+                           f'{line_energy(sb) - line_energy(sr):+.3f} and bending energy '
+                           f'{sb["bending_energy"] - sr["bending_energy"]:+.3f}; wall time '
+                           f'{sb["wall_seconds"] / wr:.2f}x{cpu}.')
     # uniform convergence
     us = [ok.get(('uniform', n)) for n in UNIFORM]
     if all(us):
@@ -443,6 +444,17 @@ def conclusions(results, sigma, levels):
                    'so the final outcome and protrusion of such a run are suspect): ' + '; '.join(jumps) + '.')
     else:
         out.append('No run has a one-step jump of domain_protrusion above 0.25 or a flip of bud_direction.')
+    # budding time: first time domain_protrusion reaches the complete-bud threshold 0.95
+    tb = []
+    for r in rows.values():
+        st = r['stats']
+        if st is not None and 'domain_protrusion' in st:
+            i = np.nonzero(st['domain_protrusion'] >= 0.95)[0]
+            if len(i):
+                tb.append((r['case'].label, st['time'][i[0]]))
+    if tb:
+        out.append('Time at which domain_protrusion first reaches 0.95 (the complete-bud threshold; T_min of '
+                   '[workflow.md](workflow.md)): ' + ', '.join(f'{l} {t:.3f}' for l, t in tb) + '.')
     # adaptation energy jumps
     for lvl in sorted(levels):
         b = rows.get(('adaptive', lvl))
@@ -462,8 +474,13 @@ def conclusions(results, sigma, levels):
                     first = cum[st['time'] <= 0.05][-1] if np.any(st['time'] <= 0.05) else 0.0
                     text += (f'; {fmt(first)} of it by t = 0.05 (the initial sharpening of phi); largest single '
                              f'jumps ' + ', '.join(f'{inc[i]:+.3g} at t = {st["time"][i + 1]:.3g}' for i in big))
-                    text += (f'. For scale: the energy falls by {st["energy"][0] - st["energy"][-1]:.3g} over the '
-                             f'run')
+                    small = 1e-9 * abs(st['energy'][-1])
+                    pos, neg = inc[inc > small], inc[inc < -small]
+                    late = inc[st['time'][1:] > 0.5].sum()
+                    text += (f'; {len(pos)} adaptations raised the energy (sum {pos.sum():+.4g}), {len(neg)} lowered it'
+                             f'{f" (sum {neg.sum():+.3g})" if len(neg) else ""}, the others changed it by round-off '
+                             f'at most; after t = 0.5 they add {late:+.3g}. For scale: the energy falls by '
+                             f'{st["energy"][0] - st["energy"][-1]:.3g} over the run')
             out.append(text + '.')
     return out
 
