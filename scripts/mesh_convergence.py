@@ -406,6 +406,51 @@ def conclusions(results, sigma, levels):
                     out.append(f'Adaptive level {lvl} is {100 * (eb - einf) / einf:+.2f} % from that E*.')
     else:
         out.append('Not every uniform run finished, so no order of convergence is estimated.')
+    # the adaptive sequence: each level halves the interface cells
+    ad = [ok.get(('adaptive', lvl)) for lvl in sorted(levels)]
+    if len(ad) >= 3 and all(ad) and sorted(levels)[-3:] == list(range(sorted(levels)[-3], sorted(levels)[-3] + 3)):
+        e = [b['summary']['energy'] for b in ad[-3:]]
+        d1, d2 = e[0] - e[1], e[1] - e[2]
+        text = (f'Adaptive energies (levels {", ".join(str(l) for l in sorted(levels)[-3:])}): '
+                f'{", ".join(f"{x:.4f}" for x in e)}; changes {-d1:+.4f}, {-d2:+.4f}')
+        p = np.log2(d1 / d2) if d1 != 0 and d2 != 0 and (d1 > 0) == (d2 > 0) and abs(d1) > abs(d2) else None
+        if p is not None and p < 0.5:
+            text += (f': the second change is {100 * d2 / d1:.0f} % of the first (observed order {p:.2f} in the '
+                     f'interface cell size), so the adaptive sequence is far from converged and an extrapolation '
+                     f'would mean nothing')
+        elif p is not None:
+            einf = e[2] - d2 / (2 ** p - 1)
+            text += (f': with the interface cell size halved per level, an observed order {p:.2f} and an extrapolated '
+                     f'{einf:.4f}')
+            if all(ok.get(('uniform', n)) for n in UNIFORM) and order_estimate(
+                    *[ok[('uniform', n)]['summary']['energy'] for n in UNIFORM]):
+                eu = order_estimate(*[ok[('uniform', n)]['summary']['energy'] for n in UNIFORM])[1]
+                text += f', {100 * (einf - eu) / eu:+.2f} % from the uniform E*'
+        else:
+            text += ': the changes do not shrink, so the adaptive sequence shows no convergence yet'
+        out.append(text + '.')
+    # is the state at the end time settled?
+    late = []
+    for r in rows.values():
+        st = r['stats']
+        if st is None or len(st['time']) < 2:
+            continue
+        i = int(np.searchsorted(st['time'], st['time'][-1] - 0.5))
+        late.append((r['case'].label, st['energy'][-1] - st['energy'][i], st['neck_radius'][-1] - st['neck_radius'][i]))
+    if late:
+        out.append('Change over the last 0.5 time units (energy; neck radius): ' +
+                   ', '.join(f'{l} {de:+.3f}; {dn:+.4f}' for l, de, dn in late) +
+                   '. Where these are comparable to the differences between meshes, the meshes are compared at '
+                   'different stages of a still-running relaxation, not at a common equilibrium.')
+    buds = [r for r in rows.values() if r['summary'] is not None and r['summary']['outcome'] == 'complete bud'
+            and r['summary']['neck_radius'] > 0]
+    if len(buds) >= 2:
+        ratio = [line_energy(r['summary']) / r['summary']['neck_radius'] for r in buds]
+        out.append(f'For the complete buds, line energy / neck radius is {min(ratio):.0f} to {max(ratio):.0f} on '
+                   f'every mesh (spread {100 * (max(ratio) - min(ratio)) / np.mean(ratio):.1f} %) while the line '
+                   f'energy itself varies by {100 * (max(line_energy(r["summary"]) for r in buds) - min(line_energy(r["summary"]) for r in buds)) / np.mean([line_energy(r["summary"]) for r in buds]):.0f} %: '
+                   f'the interface sits in the neck, so the line-energy differences between meshes are those of '
+                   f'the neck radius reached at the end time.')
     # outcome and protrusion
     done = [r for r in rows.values() if r['summary'] is not None]
     if done:
@@ -530,6 +575,8 @@ def plot(results, sigmas, levels):
             axes[i, 2].plot(st['time'], cells, ls, color=color, lw=lw, label=c.label)
         for ax, what in zip(axes[i], ['energy (t >= 0.05)', 'domain_protrusion', 'cells']):
             ax.set_title(f'sigma = {fmt_sigma(s)}: {what}')
+            if what == 'cells':
+                ax.set_yscale('log')
             ax.set_xlabel('t')
             ax.grid(True, alpha=0.3)
             ax.legend(fontsize=7)
