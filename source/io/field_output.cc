@@ -39,6 +39,8 @@ namespace Membrane
                           const double time, const unsigned int step)
   {
     DataOut<dim, spacedim> data_out;
+    // The scalar space's DoFHandler carries the cell data (attached before any vector).
+    data_out.attach_dof_handler(surface.scalar_space().dof_handler());
     const auto             vector_kind = std::vector<DataComponentInterpretation::DataComponentInterpretation>(
       spacedim, DataComponentInterpretation::component_is_part_of_vector);
     data_out.add_data_vector(surface.vector_space().dof_handler(), surface.displacement(),
@@ -55,7 +57,6 @@ namespace Membrane
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         levels[cell->active_cell_index()] = cell->level();
-    data_out.attach_dof_handler(surface.scalar_space().dof_handler());
     data_out.add_data_vector(levels, "level", DataOut<dim, spacedim>::type_cell_data);
     data_out.build_patches(surface.mapping());
 
