@@ -55,7 +55,7 @@ namespace Membrane
       std::vector<double> local;
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
-          for (auto parent = cell; parent->level() > 0;)
+          for (typename dealii::Triangulation<dim, spacedim>::cell_iterator parent = cell; parent->level() > 0;)
             {
               parent = parent->parent();
               const auto c = parent->center();
