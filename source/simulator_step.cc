@@ -65,11 +65,11 @@ namespace Membrane
         TimerOutput::Scope scope(timer, "area projection");
         for (unsigned int k = 0; k < options.area_corrections; ++k)
           {
-            const Vector defect = area_defect();
-            Vector       areas  = reference_areas;
-            areas -= defect;
+            const Vector areas = vertex_areas(surface);
             if (max_relative_difference(areas, reference_areas) <= options.area_tolerance)
               break;
+            Vector defect = reference_areas;
+            defect -= areas;
             const ShapeUpdate correction = shape_solver.correct_area(surface, defect, &timer);
             if (!apply(correction))
               return false;
@@ -116,19 +116,11 @@ namespace Membrane
       TimerOutput::Scope scope(timer, "grid control");
       const Vector normal = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
       const Vector shift  = grid_control_displacement(surface, normal, parameters.grid_control_weight);
-      const Vector areas_before = vertex_areas(surface);
-      remap_correction = move_tangentially_and_remap(surface, shift, phi);
+      const Vector ratio = area_ratio();
+      remap_correction   = move_tangentially_and_remap(surface, shift, phi);
       // The reference area moves with the vertices, each keeping its relative error;
       // the total reference area is kept exactly.
-      Vector carried = vertex_areas(surface);
-      for (const auto i : carried.locally_owned_elements())
-        if (areas_before[i] > 0)
-          carried[i] = carried[i] * (reference_areas[i] / areas_before[i]);
-      carried.compress(VectorOperation::insert);
-      const double total = carried.mean_value() * carried.size();
-      if (total > 0)
-        carried *= initial_area / total;
-      reference_areas = carried;
+      carry_reference_areas(ratio);
     }
     update_geometry();
     if (std::isfinite(energy.total()) &&

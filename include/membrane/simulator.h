@@ -103,7 +103,8 @@ namespace Membrane
     /// level), setting the initial state anew on each mesh.
     void      adapt_initial_mesh();
     /// a_ref,i / a_i as a ghosted nodal field; carry_reference_areas() is its inverse
-    /// on another mesh or surface (the total reference area kept exactly).
+    /// on another mesh or surface (the total reference area kept exactly). Used by
+    /// grid control and mesh adaptation alike.
     Vector       area_ratio() const;
     void         carry_reference_areas(const Vector &ratio_owned);
     /// Refinement level of the finest cell above the input mesh.
