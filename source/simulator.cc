@@ -128,7 +128,7 @@ namespace Membrane
       }
     stats              = Statistics::from_text(statistics_text);
     cell_quality       = min_corner_sine(surface, geometry.normal);
-    output->resume(time);
+    output->resume(time, parameters.resume_from);
     pcout << "Resumed from " << parameters.resume_from << " at step " << step << ", t = " << time << '\n';
     // A continuation with changed parameters is legitimate (e.g. a line-tension
     // branch); it is said and recorded in run_info.json.

@@ -1,36 +1,64 @@
 #include <membrane/io/atomic_file.h>
 #include <membrane/io/field_output.h>
+#include <membrane/io/vtu_writer.h>
 
 #include <deal.II/base/data_out_base.h>
-#include <deal.II/numerics/data_component_interpretation.h>
-#include <deal.II/numerics/data_out.h>
+#include <deal.II/base/mpi.h>
 
+#include <array>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 
 namespace Membrane
 {
   using namespace dealii;
 
+  namespace
+  {
+    /// The PVD entries with t <= time of `pvd`, file names prefixed by `prefix`.
+    std::vector<std::pair<double, std::string>> read_pvd(const std::string &pvd, const double time,
+                                                         const std::string &prefix)
+    {
+      // write_pvd_record writes one line per snapshot: <DataSet timestep="t" group="" part="0" file="name"/>
+      std::ifstream                               in(pvd);
+      std::vector<std::pair<double, std::string>> entries;
+      for (std::string line; std::getline(in, line);)
+        {
+          const auto t = line.find("timestep=\""), f = line.find("file=\"");
+          if (t == std::string::npos || f == std::string::npos)
+            continue;
+          const double      when = std::stod(line.substr(t + 10));
+          const std::string name = line.substr(f + 6, line.find('"', f + 6) - f - 6);
+          if (when <= time * (1 + 1e-12))
+            entries.emplace_back(when, prefix + name);
+        }
+      return entries;
+    }
+
+    /// deal.II numbers the vertices of a quadrilateral lexicographically; VTK goes around it.
+    constexpr std::array<unsigned int, 4> vtk_vertex_order = {{0, 1, 3, 2}};
+  } // namespace
+
   FieldOutput::FieldOutput(std::string directory)
     : directory(std::move(directory))
   {}
 
-  void FieldOutput::resume(const double time)
+  void FieldOutput::resume(const double time, const std::string &checkpoint)
   {
-    // write_pvd_record writes one line per snapshot: <DataSet timestep="t" group="" part="0" file="name"/>
-    std::ifstream in(directory + "/surface.pvd");
+    namespace fs = std::filesystem;
     snapshots.clear();
-    for (std::string line; std::getline(in, line);)
+    if (fs::exists(directory + "/surface.pvd"))
+      snapshots = read_pvd(directory + "/surface.pvd", time, "");
+    if (!snapshots.empty())
+      return;
+    const fs::path earlier = fs::path(checkpoint).parent_path();
+    if (fs::exists(earlier / "surface.pvd") && !fs::equivalent(earlier, directory))
       {
-        const auto t = line.find("timestep=\""), f = line.find("file=\"");
-        if (t == std::string::npos || f == std::string::npos)
-          continue;
-        const double      when = std::stod(line.substr(t + 10));
-        const std::string name = line.substr(f + 6, line.find('"', f + 6) - f - 6);
-        if (when <= time * (1 + 1e-12))
-          snapshots.emplace_back(when, name);
+        const std::string prefix = fs::relative(earlier, directory).generic_string() + "/";
+        snapshots = read_pvd((earlier / "surface.pvd").string(), time, prefix);
       }
   }
 
@@ -38,43 +66,96 @@ namespace Membrane
                           const std::vector<std::pair<std::string, const Vector *>> &scalar_fields,
                           const double time, const unsigned int step)
   {
-    DataOut<dim, spacedim> data_out;
-    // The scalar space's DoFHandler carries the cell data (attached before any vector).
-    data_out.attach_dof_handler(surface.scalar_space().dof_handler());
-    const auto             vector_kind = std::vector<DataComponentInterpretation::DataComponentInterpretation>(
-      spacedim, DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(surface.vector_space().dof_handler(), surface.displacement(),
-                             std::vector<std::string>(spacedim, "displacement"), vector_kind);
-    data_out.add_data_vector(surface.vector_space().dof_handler(), geometry.normal,
-                             std::vector<std::string>(spacedim, "normal"), vector_kind);
-    data_out.add_data_vector(surface.scalar_space().dof_handler(), geometry.mean_curvature, "H");
-    data_out.add_data_vector(surface.scalar_space().dof_handler(), geometry.gauss_curvature, "K");
-    for (const auto &[name, field] : scalar_fields)
-      data_out.add_data_vector(surface.scalar_space().dof_handler(), *field, name);
-    // Refinement level of each cell (cell data; levels count from the coarse mesh).
-    const auto            &triangulation = surface.scalar_space().dof_handler().get_triangulation();
-    dealii::Vector<float>  levels(triangulation.n_active_cells());
+    const FieldSpace &scalars = surface.scalar_space(), &vectors = surface.vector_space();
+    const auto       &triangulation = scalars.dof_handler().get_triangulation();
+    const MPI_Comm    communicator  = scalars.communicator();
+
+    // Each rank lists the vertices of its cells as (scalar DoF index, values): the
+    // position X_ref + D, the normal, H, K and the scalar fields. A vertex is one
+    // scalar DoF; the two copies of a periodic vertex are distinct DoFs (tied by a
+    // constraint), so the patch is not closed up, and a hanging vertex sits on its
+    // coarse edge because its values are constrained.
+    const unsigned int                   width = 3 + 3 + 2 + scalar_fields.size();
+    std::vector<types::global_dof_index> keys;
+    std::vector<double>                  values, levels;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
-        levels[cell->active_cell_index()] = cell->level();
-    data_out.add_data_vector(levels, "level", DataOut<dim, spacedim>::type_cell_data);
-    data_out.build_patches(surface.mapping());
+        {
+          const auto scalar_cell = scalars.cell(cell), vector_cell = vectors.cell(cell);
+          levels.push_back(cell->level());
+          for (const unsigned int v : vtk_vertex_order)
+            {
+              const auto key = scalar_cell->vertex_dof_index(v, 0);
+              keys.push_back(key);
+              for (unsigned int c = 0; c < spacedim; ++c)
+                values.push_back(cell->vertex(v)[c] + surface.displacement()(vector_cell->vertex_dof_index(v, c)));
+              for (unsigned int c = 0; c < spacedim; ++c)
+                values.push_back(geometry.normal(vector_cell->vertex_dof_index(v, c)));
+              values.push_back(geometry.mean_curvature(key));
+              values.push_back(geometry.gauss_curvature(key));
+              for (const auto &field : scalar_fields)
+                values.push_back((*field.second)(key));
+            }
+        }
+    const auto all_keys   = Utilities::MPI::gather(communicator, keys, 0);
+    const auto all_values = Utilities::MPI::gather(communicator, values, 0);
+    const auto all_levels = Utilities::MPI::gather(communicator, levels, 0);
+    // Rank 0 writes; a failure (a full disk, say) is raised on every rank so that
+    // all of them stop together.
+    std::string failure;
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
+      try
+        {
+          write_snapshot(all_keys, all_values, all_levels, width, scalar_fields, time, step);
+        }
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+        }
+    failure = Utilities::MPI::broadcast(communicator, failure, 0);
+    AssertThrow(failure.empty(), ExcMessage(failure));
+  }
+
+  void FieldOutput::write_snapshot(const std::vector<std::vector<types::global_dof_index>> &all_keys,
+                                   const std::vector<std::vector<double>> &all_values,
+                                   const std::vector<std::vector<double>> &all_levels, const unsigned int width,
+                                   const std::vector<std::pair<std::string, const Vector *>> &scalar_fields,
+                                   const double time, const unsigned int step)
+  {
+    QuadMesh mesh;
+    mesh.time  = time;
+    mesh.cycle = step;
+    std::vector<VtuArray> point_arrays = {{"normal", 3, {}}, {"H", 1, {}}, {"K", 1, {}}};
+    for (const auto &field : scalar_fields)
+      point_arrays.push_back({field.first, 1, {}});
+    VtuArray                                     level{"level", 1, {}};
+    std::map<types::global_dof_index, std::int64_t> point_of_key;
+    for (unsigned int rank = 0; rank < all_keys.size(); ++rank)
+      {
+        level.values.insert(level.values.end(), all_levels[rank].begin(), all_levels[rank].end());
+        for (std::size_t i = 0; i < all_keys[rank].size(); ++i)
+          {
+            const auto [entry, inserted] = point_of_key.emplace(all_keys[rank][i], mesh.n_points());
+            mesh.connectivity.push_back(entry->second);
+            if (!inserted)
+              continue;
+            const double *vertex = &all_values[rank][i * width];
+            mesh.points.insert(mesh.points.end(), vertex, vertex + 3);
+            unsigned int column = 3;
+            for (auto &array : point_arrays)
+              for (unsigned int c = 0; c < array.components; ++c)
+                array.values.push_back(vertex[column++]);
+          }
+      }
+    mesh.point_data = std::move(point_arrays);
+    mesh.cell_data  = {std::move(level)};
 
     std::ostringstream name;
     name << "surface-" << std::setw(6) << std::setfill('0') << step << ".vtu";
-    const std::string path = directory + "/" + name.str();
-    DataOutBase::VtkFlags flags(time, step);
-    flags.compression_level = DataOutBase::VtkFlags::best_speed;
-    data_out.set_flags(flags);
-    data_out.write_vtu_in_parallel(temporary_name(path), surface.scalar_space().communicator());
-
-    if (Utilities::MPI::this_mpi_process(surface.scalar_space().communicator()) == 0)
-      {
-        commit_temporary(path);
-        snapshots.emplace_back(time, name.str());
-        std::ostringstream pvd;
-        DataOutBase::write_pvd_record(pvd, snapshots);
-        write_file_atomically(directory + "/surface.pvd", pvd.str());
-      }
+    write_file_atomically(directory + "/" + name.str(), vtu_content(mesh));
+    snapshots.emplace_back(time, name.str());
+    std::ostringstream pvd;
+    DataOutBase::write_pvd_record(pvd, snapshots);
+    write_file_atomically(directory + "/surface.pvd", pvd.str());
   }
 } // namespace Membrane
