@@ -206,6 +206,8 @@ namespace Membrane
     });
     const MPI_Comm comm  = surface.scalar_space().communicator();
     const auto     parts = Utilities::MPI::gather(comm, local, 0);
+    // Collective: every rank takes part before the others return.
+    const auto refined = refined_cells(surface.scalar_space().dof_handler().get_triangulation());
     if (Utilities::MPI::this_mpi_process(comm) != 0)
       return;
     std::ostringstream out;
@@ -218,7 +220,6 @@ namespace Membrane
       for (const auto &line : lines)
         out << line << '\n';
     }
-    const auto refined = refined_cells(surface.scalar_space().dof_handler().get_triangulation());
     out << "refined " << refined.size() << '\n';
     for (const auto &[level, x, y] : refined)
       out << level << ' ' << x << ' ' << y << '\n';
