@@ -67,7 +67,8 @@ if os.path.isdir(sensitivity):
               'smaller cap on tau:\n',
               '```sh\nmembrane-flow --set "Material/Line tension=1500" --set "Time stepping/End time=2.5" \\\n'
               '    --set "Mesh/Cells per side=48" --set "Output/Directory=results/studies/sensitivity/n48" '
-              'experiments/7.3-budding.prm\nmembrane-flow ... --set "Time stepping/Maximum time step=2.5e-3" '
+              'experiments/7.3-budding.prm\nmembrane-flow --set "Material/Line tension=1500" --set "Time stepping/End time=2.5" \\\n'
+              '    --set "Time stepping/Maximum time step=2.5e-3" '
               '--set "Output/Directory=results/studies/sensitivity/tau2.5e-3" experiments/7.3-budding.prm\n```\n',
               '| variant | T_min | steps | stop reason |', '|---|---|---|---|']
     for variant, label in (('n48', '48 x 48 cells, tau <= 1e-2'), ('tau2.5e-3', '32 x 32 cells, tau <= 2.5e-3')):

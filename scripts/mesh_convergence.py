@@ -140,7 +140,9 @@ class Runner:
                     'environment': 'OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1', 'cwd': ROOT})
         start = time.time()
         timed_out = False
-        with open(os.path.join(case.dir, 'output.txt'), 'w') as log:
+        # The run's own log.txt: the simulator recognizes it as its stdout and does not write it twice
+        # (any other file would be foreign to the run directory, which the simulator refuses).
+        with open(os.path.join(case.dir, 'log.txt'), 'w') as log:
             process = subprocess.Popen(command, cwd=ROOT, env=env, stdout=log, stderr=subprocess.STDOUT,
                                        stdin=subprocess.DEVNULL, start_new_session=True)
             with self.lock:
@@ -244,7 +246,7 @@ def read_case(case):
         except Exception:  # noqa: BLE001 -- a half-written or empty file: report without history
             stats = None
     warnings = []
-    for name in ('output.txt', 'log.txt'):  # the run's stdout/stderr as captured here, and its own log
+    for name in ('log.txt',):  # the run's stdout/stderr as captured here
         log = os.path.join(case.dir, name)
         if os.path.exists(log):
             with open(log, errors='replace') as f:

@@ -5,6 +5,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install_dependencies.sh
 ./scripts/build.sh
+# The docs write the program as `membrane-flow`: put it on PATH (a link to build/).
+if [ "$(id -u)" -eq 0 ]; then
+  ln -sf "$(pwd)/build/membrane-flow" /usr/local/bin/membrane-flow
+fi
 ./build/membrane-flow --overwrite experiments/default.prm
 echo
 echo "Open results/default/surface.pvd in ParaView; statistics in results/default/statistics.txt."

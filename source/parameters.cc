@@ -36,8 +36,9 @@ namespace Membrane
                                            "negative bulges along +n)", 0.0);
         prm.leave_subsection();
         prm.declare_entry("Line tension", "450", Patterns::Double(0, max_double),
-                          "sigma: scale of the Cahn-Hilliard energy sigma (xi^2/2 |grad phi|^2 + f(phi)); the "
-                          "sharp-interface line tension is sigma * xi (energy/length^2).");
+                          "sigma (energy/length^2): scale of the Cahn-Hilliard energy sigma (xi^2/2 |grad phi|^2 + "
+                          "f(phi)); the sharp-interface line tension (energy/length) is sigma * xi. Physical "
+                          "units: docs/units.md.");
         prm.declare_entry("Transition length", "0.03", Patterns::Double(1e-12, max_double),
                           "xi: width scale of the diffuse domain boundary (length; the patch side is 1). The "
                           "mesh should resolve it: cell size h <= 1.25 xi.");

@@ -146,8 +146,8 @@ namespace Membrane
 
   void Simulator::warn_if_unresolved() const
   {
-    // The diffuse interface phi = tanh(1.06 s / xi) spans about 2.8 xi between
-    // phi = -0.9 and 0.9; it needs h <= 1.25 xi to be seen by >= 2 cells. h is
+    // The diffuse interface phi = tanh(3 s / (4 xi)) spans about 3.9 xi between
+    // phi = -0.9 and 0.9; h <= 1.25 xi puts about 3 cells across it. h is
     // measured on the current surface, where the interface is (everywhere if none).
     const double xi        = parameters.material.transition_length;
     const double interface = interface_cell_size(surface, phi, parameters.adaptivity.interface_phi);
@@ -156,7 +156,7 @@ namespace Membrane
       return;
     pcout << "Warning: cell size h = " << h << (interface > 0 ? " at the interface" : "")
           << " exceeds 1.25 x the transition length xi = " << xi << " (h/xi = " << h / xi
-          << "); the diffuse interface (width ~2.8 xi) is under-resolved. ";
+          << "); the diffuse interface (width ~3.9 xi between phi = -0.9 and 0.9) is under-resolved. ";
     const double factor = h / (1.25 * xi);
     if (parameters.adaptivity.enabled() && finest_level() < parameters.adaptivity.max_level)
       pcout << "Raise <Mesh/Interface cells per xi> to at least "

@@ -1,0 +1,112 @@
+#!/usr/bin/python3
+"""Every command in README.md, docs/*.md and benchmarks/README.md runs as written.
+
+The shell commands of the ```sh blocks are run, one by one, from a scratch copy of the
+repository's tracked files, so that docs cannot drift from the program. In the copy,
+build/membrane-flow (also first on PATH as `membrane-flow`) runs the real program with at most
+3 time steps, so that whole studies finish in seconds: the test checks that each command, its
+options, files and scripts exist and work together, not the science. Each command must exit
+with 0 (or the code listed in EXPECTED_CODES, with the reason).
+
+Each command starts without a results/ directory, except the page generators that read the
+results of the command before them. Not run: ./scripts/setup.sh and ./scripts/test.sh (they install packages and run this suite).
+Placeholders the docs use are created first: my_run.prm (experiments/default.prm),
+my_sweep.json (two line tensions of 7.3) and hosts (an MPI host file for this machine).
+Usage: test_docs_commands.py <source dir> <membrane-flow> <bench_cahn_hilliard> [<filter>]"""
+import glob
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+source, exe, bench = (os.path.abspath(a) for a in sys.argv[1:4])
+only = sys.argv[4] if len(sys.argv) > 4 else None
+NOT_RUN = {"./scripts/setup.sh", "./scripts/test.sh"}
+# With 3 time steps every run of a bisection ends flat: it then reports that both ends
+# give the same outcome and exits with 1, as documented in docs/workflow.md.
+EXPECTED_CODES = {"scripts/critical_value.py": 1}
+MAX_STEPS = 3
+READERS = ("make_experiment_docs.py", "make_gallery.py")
+
+
+def commands(path):
+    """Shell commands of the ```sh blocks of a Markdown file (continuation lines joined)."""
+    text = open(path).read()
+    for block in re.findall(r"```sh\n(.*?)```", text, re.S):
+        for command in block.replace("\\\n", " ").splitlines():
+            command = command.strip()
+            if command and not command.startswith("#"):
+                yield re.sub(r"\s+#.*$", "", command)
+
+
+def make_copy():
+    work = tempfile.mkdtemp(prefix="membrane_docs_")
+    files = subprocess.run(["git", "-C", source, "ls-files"], capture_output=True, text=True,
+                           check=True).stdout.split()
+    for name in files:
+        os.makedirs(os.path.join(work, os.path.dirname(name)), exist_ok=True)
+        if os.path.isfile(os.path.join(source, name)):
+            shutil.copy2(os.path.join(source, name), os.path.join(work, name))
+    os.makedirs(os.path.join(work, "build", "benchmarks"))
+    os.symlink(bench, os.path.join(work, "build", "benchmarks", "bench_cahn_hilliard"))
+    wrapper = os.path.join(work, "build", "membrane-flow")
+    with open(wrapper, "w") as out:
+        out.write(f'''#!/bin/sh
+for a in "$@"; do
+  case "$a" in --print-parameters*|--help|--version) exec "{exe}" "$@";; esac
+done
+exec "{exe}" "$@" --set "Time stepping/Maximum steps={MAX_STEPS}"
+''')
+    os.chmod(wrapper, 0o755)
+    shutil.copy(os.path.join(work, "experiments", "default.prm"), os.path.join(work, "my_run.prm"))
+    with open(os.path.join(work, "my_sweep.json"), "w") as out:
+        json.dump({"base": "experiments/7.3-budding.prm", "output": "results/my_sweep",
+                   "vary": {"Material/Line tension": [630, 1000]}}, out)
+    with open(os.path.join(work, "hosts"), "w") as out:
+        out.write("localhost slots=8\n")
+    return work
+
+
+documents = [os.path.join(source, "README.md")] + sorted(glob.glob(os.path.join(source, "docs", "*.md"))) + \
+            [os.path.join(source, "benchmarks", "README.md")]
+work = make_copy()
+env = dict(os.environ, PATH=os.path.join(work, "build") + os.pathsep + os.environ["PATH"],
+           OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
+           OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+failures, ran, seen = [], 0, set()
+for document in documents:
+    for command in commands(document):
+        where = os.path.relpath(document, source)
+        if command in NOT_RUN or command in seen or (only and only not in command):
+            continue
+        seen.add(command)
+        # Each command starts without results, as on a fresh clone, except those that
+        # read the results of the command before them.
+        if not any(reader in command for reader in READERS):
+            shutil.rmtree(os.path.join(work, "results"), ignore_errors=True)
+        start = time.time()
+        try:
+            result = subprocess.run(["bash", "-c", command], cwd=work, env=env, capture_output=True, text=True,
+                                    timeout=600)
+            code, output = result.returncode, result.stdout + result.stderr
+        except subprocess.TimeoutExpired:
+            code, output = "timeout", ""
+        expected = next((c for key, c in EXPECTED_CODES.items() if command.startswith(key)), 0)
+        ran += 1
+        status = "ok" if code in (0, expected) else "FAILED"
+        print(f"{status:6s} {time.time() - start:5.1f} s  exit {code}  {where}: {command}", flush=True)
+        if status != "ok":
+            failures.append(f"{where}: {command}\n  exit {code}: " + "\n  ".join(output.strip().splitlines()[-8:]))
+
+for failure in failures:
+    print("\n" + failure)
+print(f"{ran} commands run, {len(failures)} failed")
+if failures:
+    print(f"the scratch copy is kept for inspection: {work}")
+else:
+    shutil.rmtree(work, ignore_errors=True)
+sys.exit(1 if failures or ran == 0 else 0)
