@@ -21,6 +21,7 @@ import os
 import shutil
 import subprocess
 import sys
+import weakref
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -167,6 +168,7 @@ def default_range(field, values):
 # Display
 # ---------------------------------------------------------------------------------------------
 _xvfb = None
+_windows = weakref.WeakSet()  # render windows to close before our Xvfb stops
 
 
 def ensure_display():
@@ -193,6 +195,8 @@ def ensure_display():
 
 
 def _stop_xvfb():
+    for window in list(_windows):
+        window.Finalize()
     if _xvfb is not None and _xvfb.poll() is None:
         _xvfb.terminate()
         try:
@@ -249,6 +253,7 @@ class SurfaceRenderer:
         self.window.SetOffScreenRendering(1)
         self.window.SetSize(width, height)
         self.window.SetMultiSamples(0)
+        _windows.add(self.window)
         bar_width = colorbar_fraction(self.size[0]) if colorbar else 0.0
         self.bar_width = bar_width
         self.renderers, self.actors = [], []
