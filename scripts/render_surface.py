@@ -67,6 +67,8 @@ def select(path, time=None, index=None):
     if time is not None:
         t, f = min(series, key=lambda s: abs(s[0] - time))
     else:
+        if index is not None and not -len(series) <= index < len(series):
+            raise SystemExit(f'{path}: no snapshot {index} (there are {len(series)})')
         t, f = series[-1 if index is None else index]
     return f, t
 
