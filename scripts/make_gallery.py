@@ -18,6 +18,7 @@ sys.path.insert(0, HERE)
 from membrane_workflow.experiment_runs import command  # noqa: E402
 from membrane_workflow.statistics import load_statistics  # noqa: E402
 from render_surface import SurfaceRenderer, read_vtu, surface_polydata  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 
 results = sys.argv[1] if len(sys.argv) > 1 else 'results'
 docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
@@ -61,6 +62,13 @@ for figure, caption, panels in FIGURES:
     rows = (len(panels) + columns - 1) // columns
     fig = plt.figure(figsize=(4.2 * columns + 0.6, 3.6 * rows), dpi=100)
     grid = fig.add_gridspec(rows, columns + 1, width_ratios=[1] * columns + [0.06])
+    # the snapshots of one run share a frame, so that their sizes compare
+    surfaces = {k: read_vtu(os.path.join(results, p[0], 'surface.pvd'), p[1])
+                for k, p in enumerate(panels) if p[0] != 'energy'}
+    frames = {}
+    for k, surface in surfaces.items():
+        points = vtk_to_numpy(surface.GetPoints().GetData())
+        frames[panels[k][0]] = np.concatenate([frames.get(panels[k][0], np.empty((0, 3))), points])
     for k, panel in enumerate(panels):
         ax = fig.add_subplot(grid[k // columns, k % columns])
         if panel[0] == 'energy':
@@ -73,10 +81,10 @@ for figure, caption, panels in FIGURES:
             ax.grid(alpha=0.3)
             continue
         run, time, title, elev = panel
-        surface = read_vtu(os.path.join(results, run, 'surface.pvd'), time)
+        surface = surfaces[k]
         renderer = SurfaceRenderer((840, 720), views=[(elev, -60)], colorbar=False, timestamp=False)
         renderer.set_surface(surface_polydata(surface))
-        renderer.frame_to()
+        renderer.frame_to(frames[run])
         ax.imshow(renderer.image(), interpolation='antialiased')
         if 't =' not in title and surface.snapshot_time is not None:
             title += f' (t = {surface.snapshot_time:.3g})'
