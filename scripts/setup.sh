@@ -8,3 +8,4 @@ cd "$(dirname "$0")/.."
 ./build/membrane-flow --overwrite experiments/default.prm
 echo
 echo "Open results/default/surface.pvd in ParaView; statistics in results/default/statistics.txt."
+echo "Picture: scripts/render_surface.py results/default/surface.pvd default.png (docs/visualization.md)."

@@ -11,7 +11,9 @@ shared vertices without it):
   halves      flat patch, phi = +1 for x < 1/2, -1 for x > 1/2, top view: the left half of the
               patch is red, the right half blue, the patch square and tight in its view, and
               the background white around it;
-  layouts     the two layouts give the same picture (the displacement is not applied again);
+  layouts     the two layouts give the same picture, and from the side the egg-crate
+              z = 0.15 cos(2 pi x) cos(2 pi y) is 0.3 high for 1 wide (the displacement is not
+              applied again);
   shading     a curved patch z = 0.15 cos(2 pi x) on 6 x 6 cells: along a row of pixels the
               shade varies continuously (points merged, normals averaged) whereas the same
               picture without merging jumps at the cell edges;
@@ -142,6 +144,8 @@ def synthetic():
         write_vtu(f'halves-{suffix}.vtu', 16, flat, halves, per_cell, 0.25)
         write_vtu(f'wave-{suffix}.vtu', 6, wave, lambda x, y: np.full_like(x, 0.8), per_cell, 0.5)
         write_vtu(f'cosine-{suffix}.vtu', 4, flat, lambda x, y: np.cos(2 * np.pi * x), per_cell, 0.0)
+        write_vtu(f'crate-{suffix}.vtu', 12, lambda x, y: 0.15 * np.cos(2 * np.pi * x) * np.cos(2 * np.pi * y),
+                  lambda x, y: np.full_like(x, 0.8), per_cell, 0.0)
 
     # halves: phases where they must be, tight square framing, white background
     size = 400
@@ -179,6 +183,14 @@ def synthetic():
         b = picture(f'{name}-shared.vtu')
         difference = np.abs(a - b).mean()
         check(difference < 1.0, f'{name}: per-cell and shared layouts agree (mean difference {difference:.2f} levels)')
+
+    # geometry: from the side (parallel projection) the egg-crate z = 0.15 cos(2 pi x) cos(2 pi y)
+    # spans 0.3 in height for 1 in width; applying the displacement field again would double it
+    for name in ('crate-cells', 'crate-shared'):
+        image = picture(f'{name}.vtu', views=[rs.VIEWS['side']], timestamp=False)
+        r0, r1, c0, c1 = patch_box(image, view_width)
+        ratio = (r1 - r0 + 1) / (c1 - c0 + 1)
+        check(abs(ratio - 0.3) < 0.03, f'{name}: side view height / width = {ratio:.3f} (expected 0.30: points not displaced twice)')
 
     # shading: continuous across cells once merged, faceted without merging
     def row_jumps(image):
