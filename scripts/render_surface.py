@@ -114,7 +114,7 @@ def surface_polydata(grid, tile=(1, 1), merge=True):
         for i in range(tile[0]):
             for j in range(tile[1]):
                 transform = vtkTransform()
-                transform.Translate(i - (tile[0] - 1) / 2, j - (tile[1] - 1) / 2, 0.0)
+                transform.Translate(i - (tile[0] - 1) // 2, j - (tile[1] - 1) // 2, 0.0)  # whole periods
                 moved = vtkTransformPolyDataFilter()
                 moved.SetTransform(transform)
                 moved.SetInputData(pieces)
@@ -427,11 +427,11 @@ class SurfaceRenderer:
 
 def save_png(pixels, output):
     """Write an RGB array to PNG under a temporary name, then rename it into place."""
-    import matplotlib.image
+    from PIL import Image  # python3-pil, a dependency of python3-matplotlib
     directory = os.path.dirname(os.path.abspath(output))
     os.makedirs(directory, exist_ok=True)
     partial = output + '.partial.png'
-    matplotlib.image.imsave(partial, pixels)
+    Image.fromarray(pixels, 'RGB').save(partial, format='PNG', optimize=True)
     os.replace(partial, output)
 
 
