@@ -183,7 +183,8 @@ def ensure_display():
     read_end, write_end = os.pipe()
     _xvfb = subprocess.Popen(['Xvfb', '-displayfd', str(write_end), '-screen', '0', '1280x1024x24',
                               '-nolisten', 'tcp', '-noreset'],
-                             pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                             pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                             preexec_fn=_die_with_parent)
     os.close(write_end)
     number = b''
     while not number.endswith(b'\n'):
@@ -194,6 +195,16 @@ def ensure_display():
     os.close(read_end)
     os.environ['DISPLAY'] = ':' + number.decode().strip()
     atexit.register(_stop_xvfb)
+
+
+def _die_with_parent():
+    """In the Xvfb child: get SIGTERM when this script dies, however it dies (Linux prctl)."""
+    try:
+        import ctypes
+        import signal
+        ctypes.CDLL('libc.so.6', use_errno=True).prctl(1, signal.SIGTERM)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
 
 
 def _stop_xvfb():
