@@ -163,7 +163,9 @@ def default_range(field, values):
     if low < 0 < high:
         bound = max(-low, high)
         return -bound, bound
-    return (low, high) if high > low else (low - 0.5, high + 0.5)
+    if high - low <= 1e-6 * max(abs(low), abs(high), 1e-30):  # constant up to round-off
+        return low - 0.5 * max(abs(low), 1.0), high + 0.5 * max(abs(high), 1.0)
+    return low, high
 
 
 # ---------------------------------------------------------------------------------------------
@@ -228,6 +230,7 @@ def lookup_table(cmap, low, high):
     table = vtkLookupTable()
     table.SetNumberOfTableValues(256)
     table.SetRange(low, high)
+    table.SetVectorModeToMagnitude()  # vector fields by their length
     for k, (r, g, b, a) in enumerate(colours):
         table.SetTableValue(k, r, g, b, 1.0)
     table.Build()
