@@ -14,6 +14,8 @@ shared vertices without it):
   layouts     the two layouts give the same picture, and from the side the egg-crate
               z = 0.15 cos(2 pi x) cos(2 pi y) is 0.3 high for 1 wide (the displacement is not
               applied again);
+  depth       from the side, a low blue ridge in front hides the lower part of a higher red
+              ridge behind it, whose top shows above it (z-buffer order);
   shading     a curved patch z = 0.15 cos(2 pi x) on 6 x 6 cells: along a row of pixels the
               shade varies continuously (points merged, normals averaged) whereas the same
               picture without merging jumps at the cell edges;
@@ -144,6 +146,9 @@ def synthetic():
         write_vtu(f'halves-{suffix}.vtu', 16, flat, halves, per_cell, 0.25)
         write_vtu(f'wave-{suffix}.vtu', 6, wave, lambda x, y: np.full_like(x, 0.8), per_cell, 0.5)
         write_vtu(f'cosine-{suffix}.vtu', 4, flat, lambda x, y: np.cos(2 * np.pi * x), per_cell, 0.0)
+        write_vtu(f'ridges-{suffix}.vtu', 32,
+                  lambda x, y: 0.2 * np.exp(-((y - 0.3) / 0.07) ** 2) + 0.3 * np.exp(-((y - 0.7) / 0.07) ** 2),
+                  lambda x, y: np.where(y < 0.5, -1.0, 1.0), per_cell, 0.0)
         write_vtu(f'crate-{suffix}.vtu', 12, lambda x, y: 0.15 * np.cos(2 * np.pi * x) * np.cos(2 * np.pi * y),
                   lambda x, y: np.full_like(x, 0.8), per_cell, 0.0)
 
@@ -191,6 +196,16 @@ def synthetic():
         r0, r1, c0, c1 = patch_box(image, view_width)
         ratio = (r1 - r0 + 1) / (c1 - c0 + 1)
         check(abs(ratio - 0.3) < 0.03, f'{name}: side view height / width = {ratio:.3f} (expected 0.30: points not displaced twice)')
+
+    # depth order: from the side (-y), the lower blue ridge (y = 0.3, height 0.2) stands in front
+    # of the higher red one (y = 0.7, height 0.3): below z = 0.2 the blue ridge must hide the red
+    image = picture('ridges-cells.vtu', views=[rs.VIEWS['side']], timestamp=False)
+    r0, r1, c0, c1 = patch_box(image, view_width)
+    column = image[:, (c0 + c1) // 2]
+    at = lambda z: column[int(round(r1 - z / 0.3 * (r1 - r0)))]  # noqa: E731
+    low, high = at(0.1), at(0.26)
+    check(is_blue(low) and is_red(high), f'depth order: at z = 0.1 the front ridge (blue) {low.round()}, '
+          f'at z = 0.26 the back ridge above it (red) {high.round()}')
 
     # shading: continuous across cells once merged, faceted without merging
     def row_jumps(image):
