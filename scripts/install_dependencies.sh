@@ -10,6 +10,8 @@ packages=(
   openmpi-bin               # mpirun for parallel runs and the MPI tests
   libgtest-dev libbenchmark-dev
   python3-numpy python3-matplotlib python3-vtk9   # plots, pictures, VTU read-back test
+  xvfb libgl1-mesa-dri      # off-screen X server and software OpenGL for VTK's renderer (no display needed)
+  ffmpeg                    # movies (scripts/make_movie.py)
 )
 
 missing=()

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Render the gallery docs/gallery.md: one picture per figure of the paper (Figs. 7.1-7.4),
 made from the runs of scripts/run_experiments.sh in results/. Each panel is a snapshot of a
-run coloured by phi; energy panels come from the statistics.
+run coloured by phi, rendered with VTK (scripts/render_surface.py); energy panels come from
+the statistics.
 
 Usage: make_gallery.py [results-dir] [docs-dir]"""
 import os
@@ -10,12 +11,14 @@ import sys
 import matplotlib
 matplotlib.use('Agg')
 import matplotlib.pyplot as plt
+import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from membrane_workflow.experiment_runs import command  # noqa: E402
 from membrane_workflow.statistics import load_statistics  # noqa: E402
-from render_surface import draw, read_vtu, save_atomically  # noqa: E402
+from render_surface import SurfaceRenderer, read_vtu, surface_polydata  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 
 results = sys.argv[1] if len(sys.argv) > 1 else 'results'
 docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
@@ -55,12 +58,20 @@ for figure, caption, panels in FIGURES:
     if not all(os.path.exists(os.path.join(results, r, 'surface.pvd')) for r in runs):
         print(f'skipping Fig. {figure}: missing runs in {results}')
         continue
-    columns = min(len(panels), 3)
+    columns = len(panels) if len(panels) <= 4 else 4
     rows = (len(panels) + columns - 1) // columns
-    fig = plt.figure(figsize=(4.2 * columns, 3.6 * rows), dpi=90)
+    fig = plt.figure(figsize=(4.2 * columns + 0.6, 3.6 * rows), dpi=100)
+    grid = fig.add_gridspec(rows, columns + 1, width_ratios=[1] * columns + [0.06])
+    # the snapshots of one run share a frame, so that their sizes compare
+    surfaces = {k: read_vtu(os.path.join(results, p[0], 'surface.pvd'), p[1])
+                for k, p in enumerate(panels) if p[0] != 'energy'}
+    frames = {}
+    for k, surface in surfaces.items():
+        points = vtk_to_numpy(surface.GetPoints().GetData())
+        frames[panels[k][0]] = np.concatenate([frames.get(panels[k][0], np.empty((0, 3))), points])
     for k, panel in enumerate(panels):
+        ax = fig.add_subplot(grid[k // columns, k % columns])
         if panel[0] == 'energy':
-            ax = fig.add_subplot(rows, columns, k + 1)
             for run in panel[1]:
                 s = load_statistics(os.path.join(results, run))
                 ax.plot(s['time'], s['energy'], label=run)
@@ -70,12 +81,24 @@ for figure, caption, panels in FIGURES:
             ax.grid(alpha=0.3)
             continue
         run, time, title, elev = panel
-        ax = fig.add_subplot(rows, columns, k + 1, projection='3d')
-        draw(ax, read_vtu(os.path.join(results, run, 'surface.pvd'), time), 'phi', elev, -60)
+        surface = surfaces[k]
+        renderer = SurfaceRenderer((840, 720), views=[(elev, -60)], colorbar=False, timestamp=False)
+        renderer.set_surface(surface_polydata(surface))
+        renderer.frame_to(frames[run])
+        ax.imshow(renderer.image(), interpolation='antialiased')
+        if 't =' not in title and surface.snapshot_time is not None:
+            title += f' (t = {surface.snapshot_time:.3g})'
         ax.set_title(title, fontsize=10)
+        ax.set_axis_off()
+    # one colour bar for the phi panels
+    bar = fig.add_subplot(grid[0, columns])
+    fig.colorbar(plt.cm.ScalarMappable(cmap='coolwarm', norm=plt.Normalize(-1, 1)), cax=bar, label='phi',
+                 ticks=np.linspace(-1, 1, 5))
     fig.tight_layout()
     name = f'fig{figure}.png'
-    save_atomically(fig, os.path.join(images, name))
+    fig.savefig(os.path.join(images, name + '.partial.png'))
+    plt.close(fig)
+    os.replace(os.path.join(images, name + '.partial.png'), os.path.join(images, name))
     commands = '\n'.join(command(r) for r in runs)
     lines += [f'## Fig. {figure}\n', caption + '\n', f'![Fig. {figure}](images/gallery/{name})\n',
               f'Runs:\n\n```sh\n{commands}\n```\n']
