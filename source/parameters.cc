@@ -146,11 +146,11 @@ namespace Membrane
       prm.declare_entry("Flat protrusion", "0.3", Patterns::Double(0, max_double),
                         "The outcome is flat when the phase-A domain protrudes less than this: (domain top - mean "
                         "height of its rim) / (diameter of a sphere of the domain's area); a hemispherical cap is 0.71.");
-      prm.declare_entry("Complete protrusion", "0.95", Patterns::Double(0, max_double),
-                        "The outcome is a complete bud when the domain protrudes more than this (1: as far as a "
-                        "sphere of the domain's area standing on its rim).");
       prm.declare_entry("Complete neck ratio", "0.4", Patterns::Double(0, 1),
-                        "A neck narrower than this fraction of the bud radius above it makes a complete bud.");
+                        "The outcome is a complete bud when a neck has formed: the narrowest closed cross-section "
+                        "around the bud axis is narrower than this fraction of the widest section above it "
+                        "(radii of circles of equal area). A domain that stands out without such a neck is an "
+                        "incomplete bud.");
       prm.declare_entry("Pinch-off radius", "0.03", Patterns::Double(0, max_double),
                         "The run stops (approach to pinch-off) when a complete bud's neck radius falls below this.");
       prm.leave_subsection();
@@ -283,7 +283,6 @@ namespace Membrane
 
     prm.enter_subsection("Outcome");
     outcome.flat_protrusion     = prm.get_double("Flat protrusion");
-    outcome.complete_protrusion = prm.get_double("Complete protrusion");
     outcome.complete_neck_ratio = prm.get_double("Complete neck ratio");
     pinch_off_radius            = prm.get_double("Pinch-off radius");
     prm.leave_subsection();

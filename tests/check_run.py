@@ -20,6 +20,7 @@ parser.add_argument("--min-rejected", type=int)
 parser.add_argument("--stop-reason", help="regular expression the stop reason must match")
 parser.add_argument("--min-adaptations", type=int, help="mesh adaptations the run must have made")
 parser.add_argument("--max-mass-drift", type=float, help="bound on |mass_drift| in every row")
+parser.add_argument("--min-protrusion", type=float, help="lower bound on the final domain_protrusion")
 args = parser.parse_args()
 
 with open(f"{args.dir}/statistics.txt") as f:
@@ -61,6 +62,10 @@ if args.min_adaptations is not None:
 if args.max_mass_drift is not None:
     drift = np.abs(column["mass_drift"]).max()
     check(drift <= args.max_mass_drift, f"mass drift {drift:.2e} <= {args.max_mass_drift:g} in every row")
+if args.min_protrusion is not None:
+    check(summary["domain_protrusion"] >= args.min_protrusion,
+          f"domain protrusion {summary['domain_protrusion']:.3f} >= {args.min_protrusion:g} "
+          f"(neck ratio {summary['neck_ratio']:.3f})")
 if args.outcome is not None:
     check(summary["outcome"] == args.outcome, f"outcome '{summary['outcome']}' (expected '{args.outcome}')")
 sys.exit(0 if ok else 1)

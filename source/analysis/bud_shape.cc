@@ -1,4 +1,5 @@
 #include <membrane/analysis/bud_shape.h>
+#include <membrane/analysis/cross_sections.h>
 
 #include <deal.II/base/geometry_info.h>
 #include <deal.II/base/mpi.h>
@@ -43,30 +44,42 @@ namespace Membrane
 
   BudShape measure_bud(const Surface &surface, const Vector &phi, const unsigned int levels)
   {
-    // Every rank gathers the edges (pairs of current vertex positions, and phi
-    // there) of all cells.
-    std::vector<Point<spacedim>> local;
-    std::vector<double>          local_phi;
+    // Every rank gathers the cells (current vertex positions, and phi there) of all
+    // ranks: the cross-sections need whole cells, the averages below their edges.
+    std::vector<double> local, local_phi;
     for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
           const auto X           = surface.mapping().get_vertices(cell);
           const auto scalar_cell = surface.scalar_space().cell(cell);
-          for (unsigned int l = 0; l < GeometryInfo<dim>::lines_per_cell; ++l)
-            for (const unsigned int end : {0, 1})
-              {
-                const unsigned int v = GeometryInfo<dim>::line_to_cell_vertices(l, end);
-                local.push_back(X[v]);
-                local_phi.push_back(phi[scalar_cell->vertex_dof_index(v, 0)]);
-              }
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              local.insert(local.end(), {X[v][0], X[v][1], X[v][2]});
+              local_phi.push_back(phi[scalar_cell->vertex_dof_index(v, 0)]);
+            }
         }
-    const MPI_Comm               comm = surface.vector_space().communicator();
+    const MPI_Comm           comm = surface.vector_space().communicator();
+    std::vector<SurfaceQuad> quads;
+    std::vector<double>      quad_phi;
+    for (const auto &part : Utilities::MPI::all_gather(comm, local))
+      for (std::size_t i = 0; i + 12 <= part.size(); i += 12)
+        quads.push_back({{Point<spacedim>(part[i], part[i + 1], part[i + 2]),
+                          Point<spacedim>(part[i + 3], part[i + 4], part[i + 5]),
+                          Point<spacedim>(part[i + 6], part[i + 7], part[i + 8]),
+                          Point<spacedim>(part[i + 9], part[i + 10], part[i + 11])}});
+    for (const auto &part : Utilities::MPI::all_gather(comm, local_phi))
+      quad_phi.insert(quad_phi.end(), part.begin(), part.end());
+    // The edges, as pairs of end points.
     std::vector<Point<spacedim>> edges;
     std::vector<double>          edge_phi;
-    for (const auto &part : Utilities::MPI::all_gather(comm, local))
-      edges.insert(edges.end(), part.begin(), part.end());
-    for (const auto &part : Utilities::MPI::all_gather(comm, local_phi))
-      edge_phi.insert(edge_phi.end(), part.begin(), part.end());
+    for (std::size_t c = 0; c < quads.size(); ++c)
+      for (unsigned int l = 0; l < GeometryInfo<dim>::lines_per_cell; ++l)
+        for (const unsigned int end : {0, 1})
+          {
+            const unsigned int v = GeometryInfo<dim>::line_to_cell_vertices(l, end);
+            edges.push_back(quads[c][v]);
+            edge_phi.push_back(quad_phi[4 * c + v]);
+          }
 
     BudShape shape;
     shape.domain_area = area_of_phase_a(surface, phi);
@@ -130,40 +143,16 @@ namespace Membrane
     if (shape.height <= 0)
       return shape;
 
-    std::vector<double> R(levels, 0.0);
-    for (unsigned int j = 0; j < levels; ++j)
-      {
-        const double level = far + shape.direction * shape.height * (j + 0.5) / levels;
-        for (std::size_t e = 0; e + 1 < edges.size(); e += 2)
-          {
-            const Point<spacedim> &a = edges[e], &b = edges[e + 1];
-            if ((a[2] - level) * (b[2] - level) > 0 || a[2] == b[2])
-              continue;
-            const double s = (level - a[2]) / (b[2] - a[2]);
-            R[j]           = std::max(R[j], radius(a + s * (b - a)));
-          }
-      }
-    double above = 0;
-    shape.neck_ratio  = 1;
-    shape.neck_radius = R[0];
-    shape.bud_radius  = *std::max_element(R.begin(), R.end());
-    for (int j = static_cast<int>(levels) - 2; j >= 0; --j)
-      {
-        above = std::max(above, R[j + 1]);
-        if (above > 0 && R[j] / above < shape.neck_ratio)
-          {
-            shape.neck_ratio  = R[j] / above;
-            shape.neck_radius = R[j];
-            shape.bud_radius  = above;
-          }
-      }
+    const Neck neck   = find_neck(quads, Point<2>(apex[0], apex[1]), far, apex[2], 1.0, levels);
+    shape.neck_ratio  = neck.ratio;
+    shape.neck_radius = neck.radius;
+    shape.bud_radius  = neck.bud_radius;
     return shape;
   }
 
   std::string classify_outcome(const BudShape &shape, const OutcomeCriteria &criteria, const bool pinch_off)
   {
-    if (pinch_off || shape.neck_ratio < criteria.complete_neck_ratio ||
-        shape.domain_protrusion > criteria.complete_protrusion)
+    if (pinch_off || shape.neck_ratio < criteria.complete_neck_ratio)
       return "complete bud";
     if (shape.domain_protrusion < criteria.flat_protrusion)
       return "flat";

@@ -7,8 +7,9 @@
 //  - far-field level: mean height of the points horizontally farther than 1/2
 //    from the axis (the corners of the patch around a centred bud);
 //  - height: s (z_apex - z_far);
-//  - cross-section radius R(h): the largest horizontal distance from the axis of
-//    the points where cell edges cross the level z_far + s h, on `levels` levels;
+//  - cross-section radius R(h): the radius sqrt(area / pi) of the innermost closed
+//    section of the surface around the axis at the level z_far + s h, on `levels`
+//    levels (analysis/cross_sections.h);
 //  - neck: the level j minimising R_j / max_{i > j} R_i (a constriction with a wider
 //    bud above it); neck_ratio = that ratio, capped at 1 (1: no neck, a dome);
 //    neck_radius = R_j, bud_radius = max_{i > j} R_i;
@@ -41,13 +42,13 @@ namespace Membrane
 
   struct OutcomeCriteria
   {
-    double flat_protrusion     = 0.3;  ///< domain_protrusion below: flat
-    double complete_protrusion = 0.95; ///< domain_protrusion above: complete bud (the domain is a closed sphere)
-    double complete_neck_ratio = 0.4;  ///< neck_ratio below: complete bud
+    double flat_protrusion     = 0.3; ///< domain_protrusion below: flat
+    double complete_neck_ratio = 0.4; ///< neck_ratio below: complete bud
   };
 
-  /// "flat", "incomplete bud" or "complete bud" (a pinch-off stop is always
-  /// complete; so is a domain that protrudes as far as a sphere of its area, or a
-  /// shape with a neck narrower than complete_neck_ratio times the bud above it).
+  /// "flat", "incomplete bud" or "complete bud". A bud is complete only when a neck
+  /// has formed: a section narrower than complete_neck_ratio times the bud above it
+  /// (or a pinch-off stop). A domain that stands out, however far, without a neck is
+  /// an incomplete bud; one that protrudes less than flat_protrusion is flat.
   std::string classify_outcome(const BudShape &shape, const OutcomeCriteria &criteria, bool pinch_off);
 } // namespace Membrane
