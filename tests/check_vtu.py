@@ -71,4 +71,8 @@ if other is not None:
     difference = np.abs(a - b).max()
     assert difference < 1e-8, f"points or phi differ from {other} by {difference:.2e}"
     print(f"same points and phi as {other} to {difference:.1e}")
+# The ParaView state next to the series is Python that names this series.
+state = open(os.path.join(directory, 'paraview_state.py')).read()
+compile(state, 'paraview_state.py', 'exec')
+assert os.path.abspath(os.path.join(directory, 'surface.pvd')) in state, "paraview_state.py names another series"
 print(f"OK: {len(datasets)} snapshots, {grid.GetNumberOfCells()} cells, times {times[0]}..{times[-1]}")

@@ -46,6 +46,63 @@ namespace Membrane
     : directory(std::move(directory))
   {}
 
+  void FieldOutput::write_paraview_state() const
+  {
+    // A ParaView Python state: File > Load State (or paraview --state=paraview_state.py)
+    // opens the series with the standard view. The PVD is looked up next to the script
+    // first, so a moved run directory still opens.
+    const std::string pvd = std::filesystem::absolute(directory + "/surface.pvd").lexically_normal().string();
+    write_file_atomically(directory + "/paraview_state.py", R"(# ParaView state of a membrane-flow run: File > Load State, or paraview --state=paraview_state.py.
+# The surface coloured by phi (phase A red, B blue), smooth-shaded, at the last time; the
+# points are the current surface already (no Warp By Vector).
+import os
+from paraview.simple import *
+
+pvd = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'surface.pvd') if '__file__' in globals() else ''
+if not os.path.exists(pvd):
+    pvd = r')" + pvd + R"('
+reader = PVDReader(registrationName='surface.pvd', FileName=pvd)
+surface = ExtractSurface(registrationName='surface', Input=reader)
+smooth = GenerateSurfaceNormals(registrationName='smooth shading', Input=surface)
+smooth.FeatureAngle = 80.0
+view = GetActiveViewOrCreate('RenderView')
+view.Background = [1, 1, 1]
+try:
+    view.UseColorPaletteForBackground = 0
+except AttributeError:
+    pass
+display = Show(smooth, view)
+ColorBy(display, ('POINTS', 'phi'))
+lut = GetColorTransferFunction('phi')
+lut.ApplyPreset('Cool to Warm', True)
+lut.AutomaticRescaleRangeMode = 'Never'
+lut.RescaleTransferFunction(-1.0, 1.0)
+display.SetScalarBarVisibility(view, True)
+bar = GetScalarBar(lut, view)
+bar.TitleColor = bar.LabelColor = [0, 0, 0]
+bar.RangeLabelFormat = bar.LabelFormat = '%.1f'
+clock = AnnotateTime(registrationName='time')
+clock.Format = 't = {time:.4g}'
+clock_display = Show(clock, view)
+clock_display.Color = [0, 0, 0]
+clock_display.WindowLocation = 'Upper Left Corner'
+scene = GetAnimationScene()
+scene.UpdateAnimationUsingDataTimeSteps()
+if reader.TimestepValues:
+    scene.AnimationTime = list(reader.TimestepValues)[-1]
+# An oblique view from the side of -y, z up, framing the surface at the last time.
+view.OrientationAxesVisibility = 0
+smooth.UpdatePipeline(scene.AnimationTime)
+x0, x1, y0, y1, z0, z1 = smooth.GetDataInformation().GetBounds()
+centre = [(x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2]
+view.CameraFocalPoint = centre
+view.CameraPosition = [centre[0] + 1.2, centre[1] - 2.2, centre[2] + 1.5]
+view.CameraViewUp = [0, 0, 1]
+view.ResetCamera(False)
+Render(view)
+)");
+  }
+
   void FieldOutput::resume(const double time, const std::string &checkpoint)
   {
     namespace fs = std::filesystem;
@@ -157,5 +214,7 @@ namespace Membrane
     std::ostringstream pvd;
     DataOutBase::write_pvd_record(pvd, snapshots);
     write_file_atomically(directory + "/surface.pvd", pvd.str());
+    if (snapshots.size() == 1 || !std::filesystem::exists(directory + "/paraview_state.py"))
+      write_paraview_state();
   }
 } // namespace Membrane

@@ -58,7 +58,7 @@ namespace Membrane
   {
     static const std::set<std::string> launcher = {"case.json", "status.json"};
     static const std::set<std::string> outputs  = {"summary.json", "statistics.txt", "checkpoint.txt",
-                                                   "run_info.json", "parameters.prm"};
+                                                   "run_info.json", "parameters.prm", "paraview_state.py"};
     if (!is_regular_file)
       return RunFileKind::foreign;
     if (launcher.count(name))

@@ -30,6 +30,9 @@ namespace Membrane
     void resume(double time, const std::string &checkpoint);
 
   private:
+    /// paraview_state.py: the series in ParaView's standard view (a Python state file).
+    void write_paraview_state() const;
+
     /// Rank 0: merge the vertices gathered from all ranks and write the VTU and the PVD.
     void write_snapshot(const std::vector<std::vector<dealii::types::global_dof_index>> &keys,
                         const std::vector<std::vector<double>> &values,
