@@ -10,6 +10,7 @@ packages=(
   openmpi-bin               # mpirun for parallel runs and the MPI tests
   libgtest-dev libbenchmark-dev
   python3-numpy python3-matplotlib python3-vtk9   # plots, pictures, VTU read-back test
+  python3-dev pybind11-dev  # the Python module membrane_flow (docs/python.md)
 )
 
 missing=()
