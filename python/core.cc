@@ -14,6 +14,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <set>
@@ -84,20 +85,22 @@ namespace
       });
     }
 
-    ~Simulation() { close(); }
+    ~Simulation()
+    {
+      try
+        {
+          close();
+        }
+      catch (...) // nothing may escape a destructor; close() has freed the simulator
+        {}
+    }
 
     /// Ends the run (summary.json) and frees the simulator; the object is unusable after.
     void close()
     {
       if (!simulator)
         return;
-      if (!failed_with_error)
-        try
-          {
-            simulator->finish();
-          }
-        catch (...)
-          {}
+      guarded([&]() { simulator->finish(); });
       simulator.reset();
       directory = RunDirectory();
       open_simulations.erase(this);
@@ -347,7 +350,17 @@ namespace
   void shut_down()
   {
     while (!open_simulations.empty())
-      (*open_simulations.begin())->close();
+      {
+        Simulation *simulation = *open_simulations.begin();
+        try
+          {
+            simulation->close();
+          }
+        catch (const std::exception &e) // the simulation is freed and unregistered all the same
+          {
+            std::cerr << "membrane_flow: closing a simulation at exit: " << e.what() << std::endl;
+          }
+      }
     mpi.reset();
   }
 } // namespace

@@ -3,7 +3,8 @@
 Usage: test_python.py <input.prm> <directory of the program's run of it> <scratch directory>
 
 - Stepping the same input from Python gives the program's statistics (every column but the
-  timing, to 1e-12) and the same summary; run_until / advance stop where they must.
+  timing, to 1e-12) and the same summary; run_until / advance stop where they must; a run
+  stopped after 5 steps with a checkpoint and resumed from Python gives them too (1e-10).
 - The state arrays: one row per vertex DoF and one per cell as in the statistics; the area
   of the bilinear cells through `positions` and `cells` (2 x 2 Gauss points, as the code
   integrates) equals the statistics' area, and integral phi ds (by the same quadrature and
@@ -144,6 +145,20 @@ try:
     check(False, "a closed simulation raises")
 except mf.Error as e:
     check('closed' in str(e), f"a closed simulation raises membrane_flow.Error: {e}")
+
+# ---- 5 steps with a checkpoint, then resumed to the end: the same statistics ---------------
+split = os.path.join(scratch, 'resumed')
+first = dict(settings, **{'Checkpoint/Interval': 5, 'Output/Write VTU': False})
+with mf.Simulation(prm, dict(first, **{'Time stepping/Maximum steps': 5}), output_directory=split,
+                   overwrite=True) as part:
+    check(part.run()['stop_reason'] == 'maximum steps' and part.steps == 5, "first part: 5 steps")
+with mf.Simulation(prm, dict(first, **{'Checkpoint/Resume from': os.path.join(split, 'checkpoint.txt')}),
+                   output_directory=split) as part:
+    check(part.steps == 5 and part.time == reference['time'][5], f"resumed at step 5, t = {part.time}")
+    part.run()
+    resumed = part.statistics()
+worst = max(relative_difference(resumed[c], reference[c]) for c in reference if not c.endswith('seconds'))
+check(worst <= 1e-10, f"5 steps + resume from the checkpoint = the program's run: worst difference {worst:.2e}")
 
 # ---- from a dict only, and two open at once closed in any order ---------------------------
 a = mf.Simulation(parameters={'Mesh/Cells per side': 8, 'Material/Transition length': 0.2,
