@@ -12,6 +12,7 @@ packages=(
   python3-numpy python3-matplotlib python3-vtk9   # plots, pictures, VTU read-back test
   xvfb libgl1-mesa-dri      # off-screen X server and software OpenGL for VTK's renderer (no display needed)
   ffmpeg                    # movies (scripts/make_movie.py)
+  python3-dev pybind11-dev  # the Python module membrane_flow (docs/python.md)
 )
 
 missing=()

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Quick start: install the dependencies (Debian 12, as root), build, and run the
-# default input. Run again, it skips what is done and rebuilds incrementally.
+# Quick start: install the dependencies (Debian 12, as root), build, make the Python
+# package importable (import membrane_flow with /usr/bin/python3), and run the default
+# input. Run again, it skips what is done and rebuilds incrementally.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/install_dependencies.sh
@@ -9,6 +10,7 @@ cd "$(dirname "$0")/.."
 if [ "$(id -u)" -eq 0 ]; then
   ln -sf "$(pwd)/build/membrane-flow" /usr/local/bin/membrane-flow
 fi
+./scripts/install_python_path.sh
 ./build/membrane-flow --overwrite experiments/default.prm
 echo
 echo "Open results/default/surface.pvd in ParaView; statistics in results/default/statistics.txt."

@@ -219,6 +219,11 @@ namespace Membrane
     }
   } // namespace
 
+  std::string error_message(const std::exception &e)
+  {
+    return clean_message(e);
+  }
+
   int run_application(int argc, char **argv)
   {
     const bool               root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;

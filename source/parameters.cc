@@ -315,14 +315,18 @@ namespace Membrane
   }
 
   void read_parameter_file(const std::string &filename, ParameterHandler &prm, Parameters &parameters,
-                           const std::vector<std::pair<std::string, std::string>> &overrides)
+                           const std::vector<std::pair<std::string, std::string>> &overrides,
+                           const std::string &override_prefix)
   {
-    check_input_file(filename);
     Parameters::declare(prm);
-    prm.parse_input(filename, "", /*skip_undefined=*/false, /*assert_mandatory_entries_are_found=*/false);
+    if (!filename.empty())
+      {
+        check_input_file(filename);
+        prm.parse_input(filename, "", /*skip_undefined=*/false, /*assert_mandatory_entries_are_found=*/false);
+      }
     for (const auto &[path, value] : overrides)
       {
-        std::vector<std::string> parts = split_entry_path(path, "--set " + path + "=" + value);
+        std::vector<std::string> parts = split_entry_path(path, override_prefix + path + "=" + value);
         const std::string        entry = parts.back();
         parts.pop_back();
         for (const auto &section : parts)
@@ -336,7 +340,7 @@ namespace Membrane
             // deal.II names the accepted pattern in its message ("... the given pattern <[Double 0...]>").
             const std::string text    = e.what();
             const auto        pattern = text.find("pattern <");
-            throw ExcMessage("--set " + path + "=" + value + ": " +
+            throw ExcMessage(override_prefix + path + "=" + value + ": " +
                              (pattern == std::string::npos ? std::string("no such entry (see --print-parameters)")
                                                            : "the value does not match the accepted " +
                                                                text.substr(pattern, text.find('>', pattern) - pattern + 1)));

@@ -171,6 +171,28 @@ namespace Membrane
 
   RunResult Simulator::run()
   {
+    initialize();
+    while (advance())
+      ;
+    return finish();
+  }
+
+  void Simulator::write_fields()
+  {
+    if (!parameters.write_vtu || last_written == step)
+      return;
+    last_written = step;
+    TimerOutput::Scope scope(timer, "output");
+    output->write(surface, geometry, {{"phi", &phi}, {"Y", &chemical_potential}, {"gamma", &pressure}}, time, step);
+  }
+
+  bool Simulator::end_time_reached() const
+  {
+    return time >= parameters.end_time * (1 - 1e-12);
+  }
+
+  void Simulator::initialize()
+  {
     wall.restart();
     setup();
     if (parameters.resume_from.empty())
@@ -188,15 +210,6 @@ namespace Membrane
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s); output in "
           << parameters.output_directory << "/\n";
 
-    unsigned int last_written = std::numeric_limits<unsigned int>::max();
-    const auto   write_fields = [&]() {
-      if (!parameters.write_vtu || last_written == step)
-        return;
-      last_written = step;
-      TimerOutput::Scope scope(timer, "output");
-      output->write(surface, geometry, {{"phi", &phi}, {"Y", &chemical_potential}, {"gamma", &pressure}}, time, step);
-    };
-    const bool root = Utilities::MPI::this_mpi_process(communicator) == 0;
     if (parameters.resume_from.empty())
       {
         record_statistics(0);
@@ -205,104 +218,111 @@ namespace Membrane
       }
     else
       bud = measure_bud(surface, phi);
+  }
 
-    RunResult  result{"end time", false, ""};
-    const auto finished = [&]() { return time >= parameters.end_time * (1 - 1e-12); };
-    bool interrupted = false;
-    while (!finished())
+  bool Simulator::advance()
+  {
+    if (loop_stopped)
+      return false;
+    const auto stop = [&](const std::string &reason, const bool failed) {
+      run_result.stop_reason = reason;
+      run_result.failed      = failed;
+      loop_stopped           = true;
+      return false;
+    };
+    if (end_time_reached())
+      return stop("end time", false);
+    if (step >= parameters.max_steps)
+      return stop("maximum steps", false);
+    // SIGTERM/SIGINT: every rank stops at the same step and the state is kept.
+    if (Utilities::MPI::max(stop_requested() ? 1 : 0, communicator) > 0)
       {
-        if (step >= parameters.max_steps)
-          {
-            result.stop_reason = "maximum steps";
-            break;
-          }
-        // SIGTERM/SIGINT: every rank stops at the same step and the state is kept.
-        if (Utilities::MPI::max(stop_requested() ? 1 : 0, communicator) > 0)
-          {
-            interrupted        = true;
-            result.stop_reason = std::string("interrupted by ") + stop_signal_name(stop_signal()) + " at t = " +
-                                 format(time) + "; a checkpoint of the last state is written";
-            result.failed      = true;
-            break;
-          }
-        const double    trial         = std::min(step_control.tau(), parameters.end_time - time);
-        const double    energy_before = energy.total();
-        rejection_factor              = 0.5;
-        const Rejection why           = try_step(trial);
-        if (!why.empty())
-          {
-            ++rejected_steps;
-            if (!step_control.reject(trial, rejection_factor))
-              {
-                result.stop_reason = "step failed at t = " + format(time) + ": " + why +
-                                     (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>"
-                                                          : "; reduce <Time stepping/Time step> or set Adaptive = true") +
-                                     ". The last good state is kept";
-                result.failed = true;
-                break;
-              }
-            if (step_control.stalled())
-              {
-                // Steps keep failing at a tiny tau. With a complete bud this is the
-                // approach to pinch-off (the neck is below what the mesh resolves).
-                const bool budded = classify_outcome(bud, parameters.outcome, false) == "complete bud";
-                result.stop_reason = std::string(budded ? "pinch-off approach" : "stalled") + " at t = " +
-                                     format(time) + ": half of the last 20 steps were rejected (last: " + why +
-                                     ") at tau = " + format(step_control.tau()) + ". The last good state is kept";
-                result.failed = !budded;
-                break;
-              }
-            continue;
-          }
-        time += trial;
-        ++step;
-        grid_control_skipped += grid_move_skipped;
-        record_statistics(trial);
-        const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
-        step_control.accept(trial, max_increment, 1.0 / (parameters.cells_per_side << finest_level()), change,
-                            error_estimate);
-        previous_increment  = step_increment;
-        previous_phi_change = step_phi_change;
-        previous_tau        = trial;
-        if (parameters.adaptivity.enabled() && step % parameters.adaptivity.interval == 0 && adapt_mesh())
-          previous_tau = 0; // the increments live on the old mesh
-
-        const bool output_due = time >= next_output_time * (1 - 1e-12);
-        if (output_due || finished())
-          {
-            write_fields();
-            if (parameters.output_interval <= 0)
-              next_output_time = time; // every step
-            else
-              while (next_output_time <= time * (1 + 1e-12))
-                next_output_time += parameters.output_interval;
-            if (root)
-              stats.write(parameters.output_directory + "/statistics.txt");
-          }
-        if (parameters.checkpoint_interval > 0 && step % parameters.checkpoint_interval == 0)
-          write_checkpoint();
-        report_progress(finished());
-
-        if (parameters.evolve_shape && bud.neck_ratio < parameters.outcome.complete_neck_ratio &&
-            bud.neck_radius < parameters.pinch_off_radius)
-          {
-            result.stop_reason = "pinch-off approach: neck radius " + format(bud.neck_radius) + " < " +
-                                 format(parameters.pinch_off_radius);
-            break;
-          }
-        if (parameters.equilibrium_rate > 0 &&
-            change / trial < parameters.equilibrium_rate)
-          {
-            result.stop_reason = "equilibrium: relative energy rate " + format(change / trial) + " < " +
-                                 format(parameters.equilibrium_rate);
-            break;
-          }
+        interrupted = true;
+        return stop(std::string("interrupted by ") + stop_signal_name(stop_signal()) + " at t = " + format(time) +
+                      "; a checkpoint of the last state is written",
+                    true);
       }
+    const double    trial         = std::min(step_control.tau(), parameters.end_time - time);
+    const double    energy_before = energy.total();
+    rejection_factor              = 0.5;
+    const Rejection why           = try_step(trial);
+    if (!why.empty())
+      {
+        ++rejected_steps;
+        if (!step_control.reject(trial, rejection_factor))
+          return stop("step failed at t = " + format(time) + ": " + why +
+                        (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>"
+                                             : "; reduce <Time stepping/Time step> or set Adaptive = true") +
+                        ". The last good state is kept",
+                      true);
+        if (step_control.stalled())
+          {
+            // Steps keep failing at a tiny tau. With a complete bud this is the
+            // approach to pinch-off (the neck is below what the mesh resolves).
+            const bool budded = classify_outcome(bud, parameters.outcome, false) == "complete bud";
+            return stop(std::string(budded ? "pinch-off approach" : "stalled") + " at t = " + format(time) +
+                          ": half of the last 20 steps were rejected (last: " + why +
+                          ") at tau = " + format(step_control.tau()) + ". The last good state is kept",
+                        !budded);
+          }
+        return true;
+      }
+    time += trial;
+    ++step;
+    grid_control_skipped += grid_move_skipped;
+    record_statistics(trial);
+    const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
+    step_control.accept(trial, max_increment, 1.0 / (parameters.cells_per_side << finest_level()), change,
+                        error_estimate);
+    previous_increment  = step_increment;
+    previous_phi_change = step_phi_change;
+    previous_tau        = trial;
+    if (parameters.adaptivity.enabled() && step % parameters.adaptivity.interval == 0 && adapt_mesh())
+      previous_tau = 0; // the increments live on the old mesh
+
+    const bool output_due = time >= next_output_time * (1 - 1e-12);
+    if (output_due || end_time_reached())
+      {
+        write_fields();
+        if (parameters.output_interval <= 0)
+          next_output_time = time; // every step
+        else
+          while (next_output_time <= time * (1 + 1e-12))
+            next_output_time += parameters.output_interval;
+        if (Utilities::MPI::this_mpi_process(communicator) == 0)
+          stats.write(parameters.output_directory + "/statistics.txt");
+      }
+    if (parameters.checkpoint_interval > 0 && step % parameters.checkpoint_interval == 0)
+      write_checkpoint();
+    report_progress(end_time_reached());
+
+    if (parameters.evolve_shape && bud.neck_ratio < parameters.outcome.complete_neck_ratio &&
+        bud.neck_radius < parameters.pinch_off_radius)
+      return stop("pinch-off approach: neck radius " + format(bud.neck_radius) + " < " +
+                    format(parameters.pinch_off_radius),
+                  false);
+    if (parameters.equilibrium_rate > 0 &&
+        change / trial < parameters.equilibrium_rate)
+      return stop("equilibrium: relative energy rate " + format(change / trial) + " < " +
+                    format(parameters.equilibrium_rate),
+                  false);
+    return true;
+  }
+
+  RunResult Simulator::finish()
+  {
+    if (finished_run)
+      return run_result;
+    finished_run = true;
+    if (!loop_stopped) // finished by the caller before a stop rule applied
+      run_result = {"finished by the caller at t = " + format(time), false, ""};
+    loop_stopped = true;
     write_fields();
     if (parameters.checkpoint_interval > 0 || interrupted)
       write_checkpoint();
-    if (root)
+    if (Utilities::MPI::this_mpi_process(communicator) == 0)
       stats.write(parameters.output_directory + "/statistics.txt");
+    RunResult &result = run_result;
     result.outcome = classify_outcome(bud, parameters.outcome, result.stop_reason.rfind("pinch-off", 0) == 0);
     write_summary(result, earlier_wall_seconds + wall.wall_time());
     pcout << "Stopped (" << result.stop_reason << ") after " << step << " steps (" << rejected_steps

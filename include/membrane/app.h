@@ -6,7 +6,14 @@
 // stopped early (diverged), 128 + signal when stopped by SIGINT / SIGTERM.
 // An error message is always the last thing printed.
 
+#include <exception>
+#include <string>
+
 namespace Membrane
 {
   int run_application(int argc, char **argv);
+
+  /// The user-facing part of an exception's text on one line (deal.II's "Additional
+  /// information", without the stack trace), as the application prints it.
+  std::string error_message(const std::exception &e);
 }

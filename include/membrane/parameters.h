@@ -64,9 +64,12 @@ namespace Membrane
   /// overrides ("Section/Subsection/Entry", value) in order; a clean message for
   /// unknown entries and values out of range.
   /// The input file must be a readable regular file, an override's entry path
-  /// "Section/.../Entry" must have no empty part.
+  /// "Section/.../Entry" must have no empty part. An empty `filename` means no file (the
+  /// defaults and the overrides only). Messages about an override start with
+  /// `override_prefix` (the command line's "--set ").
   void read_parameter_file(const std::string &filename, dealii::ParameterHandler &prm, Parameters &parameters,
-                           const std::vector<std::pair<std::string, std::string>> &overrides = {});
+                           const std::vector<std::pair<std::string, std::string>> &overrides = {},
+                           const std::string &override_prefix = "--set ");
 
   // ---- validation helpers (docs/reliability.md) ----------------------------------------
 

@@ -32,6 +32,7 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,12 +59,34 @@ namespace Membrane
     Simulator(const Parameters &parameters, RunOptions options, MPI_Comm communicator = MPI_COMM_WORLD);
     ~Simulator();
 
+    /// The whole run: initialize(), advance() until it returns false, finish().
     RunResult run();
+
+    /// The pieces of run(), for driving the time loop from elsewhere (the Python module).
+    /// Sets up the mesh and the initial state (or resumes), writes run_info.json, the
+    /// parameters and the first statistics row and snapshot.
+    void      initialize();
+    /// One trial step of the time loop (accepted or rejected) with the output that is due;
+    /// false once the run has stopped (end time, maximum steps, a stop rule, a signal or a
+    /// failure), and then without doing anything: result() says why.
+    bool      advance();
+    /// Writes the last snapshot, checkpoint, statistics and summary.json; once only.
+    RunResult finish();
+    const RunResult &result() const { return run_result; }
+    bool             stopped() const { return loop_stopped; }
 
     const Statistics &statistics() const { return stats; }
     /// The current state (for tests and post-processing in C++).
     const Surface &current_surface() const { return surface; }
     const Vector  &order_parameter() const { return phi; }
+    const Vector  &chemical_potential_field() const { return chemical_potential; } ///< Y, ghosted
+    const Vector  &pressure_field() const { return pressure; }                     ///< gamma, ghosted
+    const Geometry    &current_geometry() const { return geometry; }
+    const EnergyTerms &energy_terms() const { return energy; }
+    double             current_time() const { return time; }
+    unsigned int       current_step() const { return step; }
+    double             next_time_step() const { return step_control.tau(); }
+    const Triangulation &mesh() const { return triangulation; }
 
   private:
     /// Why a trial step was rejected (empty: accepted).
@@ -114,6 +137,9 @@ namespace Membrane
     void      write_run_info() const;
     void      write_summary(const RunResult &result, double wall_seconds) const;
     void      report_progress(bool force);
+    /// A snapshot of the fields (once per step at most).
+    void      write_fields();
+    bool      end_time_reached() const;
 
     const Parameters &parameters;
     const RunOptions  options;
@@ -160,5 +186,9 @@ namespace Membrane
     double segment_start_time   = 0; ///< t at the start of this segment (for the ETA)
     std::unique_ptr<class LogFile> log; ///< rank 0: log.txt in the output directory
     std::vector<std::string> changed_on_resume; ///< "Section/Entry: old -> new" against the checkpoint's run
+    /// The time loop's state between initialize(), advance() and finish().
+    RunResult    run_result{"end time", false, ""};
+    bool         loop_stopped = false, interrupted = false, finished_run = false;
+    unsigned int last_written = std::numeric_limits<unsigned int>::max(); ///< step of the last snapshot
   };
 } // namespace Membrane

@@ -1,18 +1,14 @@
-"""Reading a run's statistics.txt and summary.json."""
-import json
+"""Reading a run's statistics.txt and summary.json: the loader of the Python package
+(python/membrane_flow/results.py), taken from this source tree without needing the
+compiled module or an installed membrane_flow."""
+import importlib.util
 import os
 
-import numpy as np
+_path = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'python', 'membrane_flow',
+                     'results.py')
+_spec = importlib.util.spec_from_file_location('_membrane_flow_results', _path)
+_results = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_results)
 
-
-def load_statistics(run_dir):
-    """Columns of statistics.txt as a dict of numpy arrays."""
-    with open(os.path.join(run_dir, 'statistics.txt')) as f:
-        names = f.readline().lstrip('#').split()
-        data = np.atleast_2d(np.loadtxt(f))
-    return {n: data[:, i] for i, n in enumerate(names)}
-
-
-def load_summary(run_dir):
-    with open(os.path.join(run_dir, 'summary.json')) as f:
-        return json.load(f)
+load_statistics = _results.load_statistics
+load_summary = _results.load_summary

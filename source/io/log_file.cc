@@ -1,6 +1,8 @@
 #include <membrane/io/log_file.h>
 
+#include <algorithm>
 #include <iostream>
+#include <vector>
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -9,14 +11,12 @@ namespace Membrane
 {
   namespace
   {
-    /// A stream buffer that writes to two others.
+    /// A stream buffer that writes to the original one and to every open log file.
     class TeeBuffer : public std::streambuf
     {
     public:
-      TeeBuffer(std::streambuf *first, std::streambuf *second)
-        : first(first)
-        , second(second)
-      {}
+      std::streambuf              *first = nullptr;
+      std::vector<std::streambuf *> others;
 
     protected:
       int overflow(const int c) override
@@ -25,23 +25,36 @@ namespace Membrane
           return traits_type::not_eof(c);
         const auto ch = traits_type::to_char_type(c);
         const bool ok = first->sputc(ch) != traits_type::eof();
-        second->sputc(ch); // the log is best effort: a full disk must not stop the run
+        for (auto *other : others)
+          other->sputc(ch); // the log is best effort: a full disk must not stop the run
         return ok ? c : traits_type::eof();
       }
       std::streamsize xsputn(const char *s, const std::streamsize n) override
       {
-        second->sputn(s, n);
+        for (auto *other : others)
+          other->sputn(s, n);
         return first->sputn(s, n);
       }
       int sync() override
       {
-        second->pubsync();
+        for (auto *other : others)
+          other->pubsync();
         return first->pubsync();
       }
-
-    private:
-      std::streambuf *first, *second;
     };
+
+    /// std::cout and std::cerr go through these while any LogFile is open. Several
+    /// may be open at once (simulations of the Python module), closed in any order.
+    struct Redirection
+    {
+      TeeBuffer out, err;
+      unsigned int open_logs = 0;
+    };
+    Redirection &redirection()
+    {
+      static Redirection r;
+      return r;
+    }
   } // namespace
 
   namespace
@@ -57,8 +70,6 @@ namespace Membrane
   } // namespace
 
   LogFile::LogFile(const std::string &path)
-    : out_original(std::cout.rdbuf())
-    , err_original(std::cerr.rdbuf())
   {
     if (stdout_is(path))
       return;
@@ -68,17 +79,30 @@ namespace Membrane
         std::cerr << "Warning: cannot write the log file <" << path << ">; output goes to the terminal only\n";
         return;
       }
-    out_tee = std::make_unique<TeeBuffer>(out_original, file.rdbuf());
-    err_tee = std::make_unique<TeeBuffer>(err_original, file.rdbuf());
-    std::cout.rdbuf(out_tee.get());
-    std::cerr.rdbuf(err_tee.get());
+    Redirection &r = redirection();
+    if (r.open_logs++ == 0)
+      {
+        r.out.first = std::cout.rdbuf(&r.out);
+        r.err.first = std::cerr.rdbuf(&r.err);
+      }
+    r.out.others.push_back(file.rdbuf());
+    r.err.others.push_back(file.rdbuf());
+    registered = true;
   }
 
   LogFile::~LogFile()
   {
+    if (!registered)
+      return;
     std::cout.flush();
     std::cerr.flush();
-    std::cout.rdbuf(out_original);
-    std::cerr.rdbuf(err_original);
+    Redirection &r = redirection();
+    for (auto *tee : {&r.out, &r.err})
+      tee->others.erase(std::find(tee->others.begin(), tee->others.end(), file.rdbuf()));
+    if (--r.open_logs == 0)
+      {
+        std::cout.rdbuf(r.out.first);
+        std::cerr.rdbuf(r.err.first);
+      }
   }
 } // namespace Membrane

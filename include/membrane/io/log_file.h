@@ -3,7 +3,8 @@
 // to a file in its output directory. While a LogFile lives, std::cout and std::cerr
 // of this process write to both the terminal and the file (appended, so a resumed
 // run's log continues the earlier one). If the standard output already goes to
-// that file (a sweep capturing a case's output there), nothing is duplicated.
+// that file (a sweep capturing a case's output there), nothing is duplicated. Several
+// LogFiles may be open at once and closed in any order; each receives all output.
 
 #include <fstream>
 #include <memory>
@@ -21,8 +22,7 @@ namespace Membrane
     LogFile &operator=(const LogFile &) = delete;
 
   private:
-    std::ofstream                   file;
-    std::unique_ptr<std::streambuf> out_tee, err_tee;
-    std::streambuf                 *out_original, *err_original;
+    std::ofstream file;
+    bool          registered = false; ///< whether std::cout and std::cerr also go to `file`
   };
 } // namespace Membrane

@@ -17,6 +17,9 @@ namespace Membrane
     void end_row();
 
     std::size_t n_rows() const { return rows.size(); }
+    const std::vector<std::string> &column_names() const { return columns; }
+    /// The rows in order; a row shorter than column_names() lacks the later columns.
+    const std::vector<std::vector<double>> &row_values() const { return rows; }
     double      last(const std::string &column) const;
     std::string to_text() const;
     /// The inverse of to_text() (for resuming a run from a checkpoint).

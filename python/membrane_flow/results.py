@@ -1,0 +1,176 @@
+"""Reading what a run of membrane-flow wrote into its output directory.
+
+Pure Python (numpy; VTK's Python module for the fields of a snapshot): it needs neither
+the compiled part of membrane_flow nor MPI.
+
+    run = membrane_flow.load_run('results/default')
+    run.statistics['energy']        # columns of statistics.txt as numpy arrays
+    run.summary['outcome']          # summary.json
+    run.parameters['Material/Line tension']
+    run.snapshots                   # [(t, path of the VTU), ...] from surface.pvd
+    fields = run.snapshot(-1)       # points, cells and point data of the last snapshot
+"""
+import json
+import os
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+
+def load_statistics(run_dir):
+    """Columns of <run_dir>/statistics.txt as a dict of numpy arrays (in file order)."""
+    return read_statistics(os.path.join(run_dir, 'statistics.txt'))
+
+
+def read_statistics(path):
+    """Columns of a statistics file (a '#' header of names, one row per step)."""
+    with open(path) as f:
+        names = f.readline().lstrip('#').split()
+        data = np.loadtxt(f, ndmin=2)
+    if data.size == 0:
+        data = np.zeros((0, len(names)))
+    return {n: data[:, i] for i, n in enumerate(names)}
+
+
+def load_summary(run_dir):
+    """summary.json as a dict."""
+    with open(os.path.join(run_dir, 'summary.json')) as f:
+        return json.load(f)
+
+
+def load_run_info(run_dir):
+    """run_info.json as a dict."""
+    with open(os.path.join(run_dir, 'run_info.json')) as f:
+        return json.load(f)
+
+
+def parse_prm(text):
+    """The entries of a .prm text as {'Section/Entry': 'value'} (values as strings)."""
+    entries, sections = {}, []
+    for line in text.splitlines():
+        line = line.split('#', 1)[0].strip()
+        if not line:
+            continue
+        words = line.split(None, 1)
+        if words[0] == 'subsection':
+            sections.append(words[1].strip() if len(words) > 1 else '')
+        elif words[0] == 'end':
+            sections.pop()
+        elif words[0] == 'set' and len(words) > 1:
+            name, _, value = words[1].partition('=')
+            entries['/'.join(sections + [name.strip()])] = value.strip()
+    return entries
+
+
+def load_parameters(run_dir):
+    """parameters.prm (every parameter the run used) as {'Section/Entry': 'value'}."""
+    with open(os.path.join(run_dir, 'parameters.prm')) as f:
+        return parse_prm(f.read())
+
+
+def load_snapshots(run_dir, pvd='surface.pvd'):
+    """The snapshots listed in the PVD file as [(t, absolute path of the VTU), ...]."""
+    root = ET.parse(os.path.join(run_dir, pvd)).getroot()
+    return [(float(d.get('timestep')), os.path.join(os.path.abspath(run_dir), d.get('file')))
+            for d in root.iter('DataSet')]
+
+
+def read_vtu(path):
+    """Points, cells and point data of a VTU (or PVTU) file, read with VTK.
+
+    Returns a dict: 'points' (n x 3), 'cells' (n_cells x vertices per cell, indices into
+    points), 'point_data' {name: array}, 'cell_data' {name: array}, and 'time' if the file
+    records one (VTK field data TIME, single precision in deal.II's files)."""
+    import vtk
+    from vtk.util.numpy_support import vtk_to_numpy
+
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f"no snapshot file <{path}>")
+    reader = vtk.vtkXMLPUnstructuredGridReader() if path.endswith('.pvtu') else vtk.vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    grid = reader.GetOutput()
+    if grid is None or grid.GetNumberOfPoints() == 0:
+        raise ValueError(f"<{path}> holds no unstructured grid that VTK can read")
+    points = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
+    n_cells = grid.GetNumberOfCells()
+    connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).astype(np.int64)
+    offsets = vtk_to_numpy(grid.GetCells().GetOffsetsArray()).astype(np.int64)
+    sizes = np.diff(offsets)
+    if n_cells and np.all(sizes == sizes[0]):
+        cells = connectivity.reshape(n_cells, sizes[0])
+    else:
+        cells = [connectivity[offsets[i]:offsets[i + 1]] for i in range(n_cells)]
+
+    def arrays(data):
+        return {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)).copy()
+                for i in range(data.GetNumberOfArrays()) if data.GetArray(i) is not None}
+
+    result = {'points': points, 'cells': cells, 'point_data': arrays(grid.GetPointData()),
+              'cell_data': arrays(grid.GetCellData())}
+    field_data = arrays(grid.GetFieldData())
+    if 'TIME' in field_data:
+        result['time'] = float(np.ravel(field_data['TIME'])[0])
+    return result
+
+
+class Run:
+    """A finished (or running) run's output directory. Each file is read on first use."""
+
+    def __init__(self, directory):
+        if not os.path.isdir(directory):
+            raise FileNotFoundError(f"no run directory <{directory}>")
+        self.directory = directory
+        self._cache = {}
+
+    def _get(self, key, load):
+        if key not in self._cache:
+            self._cache[key] = load(self.directory)
+        return self._cache[key]
+
+    @property
+    def statistics(self):
+        """statistics.txt: {column: numpy array}, one entry per accepted step (and t = 0)."""
+        return self._get('statistics', load_statistics)
+
+    @property
+    def summary(self):
+        return self._get('summary', load_summary)
+
+    @property
+    def run_info(self):
+        return self._get('run_info', load_run_info)
+
+    @property
+    def parameters(self):
+        """parameters.prm: {'Section/Entry': 'value'}, every entry the run used."""
+        return self._get('parameters', load_parameters)
+
+    @property
+    def snapshots(self):
+        """[(t, path), ...] of the snapshots in surface.pvd."""
+        return self._get('snapshots', load_snapshots)
+
+    @property
+    def times(self):
+        return np.array([t for t, _ in self.snapshots])
+
+    def snapshot(self, index=-1):
+        """The fields of a snapshot (see read_vtu): by position in the series
+        (an int, negative from the end) or the one closest to a time (a float)."""
+        series = self.snapshots
+        if not series:
+            raise ValueError(f"<{self.directory}> lists no snapshots")
+        if isinstance(index, float):
+            index = int(np.argmin([abs(t - index) for t, _ in series]))
+        fields = read_vtu(series[index][1])
+        fields['time'], fields['file'] = series[index]  # the PVD's time (the VTU's is single precision)
+        return fields
+
+    def __repr__(self):
+        return f"Run({self.directory!r})"
+
+
+def load_run(directory):
+    """A run's output directory (see Run)."""
+    return Run(directory)
