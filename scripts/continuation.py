@@ -122,7 +122,11 @@ def follow(args):
 def compare(args):
     branches = []
     for directory in (args.a, args.b):
-        with open(os.path.join(directory, 'branch.json')) as f:
+        path = os.path.join(directory, 'branch.json')
+        if not os.path.isfile(path):
+            print(f'{NAME}: error: {path} does not exist (the output of continuation.py follow)', file=sys.stderr)
+            return 1
+        with open(path) as f:
             branches.append(json.load(f))
     for b in branches:
         turn = b['turning_point']

@@ -35,6 +35,8 @@ def main():
     parser.add_argument('--crf', type=int, default=23, help='H.264 quality, lower is better and larger (default 23)')
     add_common_options(parser)
     args = parser.parse_args()
+    if not os.path.isfile(args.input):
+        parser.error(f'{args.input} does not exist (the surface.pvd of a run)')
     if not args.input.endswith('.pvd'):
         raise SystemExit('make_movie.py needs a PVD series (surface.pvd)')
     if shutil.which('ffmpeg') is None:

@@ -27,7 +27,19 @@ lines = ['# Parameter studies: budding time and critical line tension\n',
          'The paper\'s Fig. 7.4 F-I: the budding time `T_min` (definition in [workflow.md](workflow.md)) of',
          'the 7.3 setup when one parameter varies, in the complete-budding regime. In this discretization',
          'that regime starts at sigma ~ 930 on the uniform 32 x 32 mesh (about 780 with local refinement: the bisections below; see also [experiments.md](experiments.md)), so the H0_A, kappa_A',
-         'and kappa_G^A studies use sigma = 1500 instead of the paper\'s value. Runs end at t = 2.5.\n']
+         'and kappa_G^A studies use sigma = 1500 instead of the paper\'s value. Runs end at t = 2.5.\n',
+         '**Which outcome these numbers are about.** The outcome columns and brackets below were computed',
+         'when the simulator called a bud complete once its domain protruded as far as a sphere of its area',
+         '(`domain_protrusion >= 0.95`). A complete bud now needs a neck: the narrowest closed cross-section',
+         'below 0.4 of the widest above it ([model.md](model.md)). On the 32 x 32 mesh the protruding domains',
+         'of these runs are fingers without a neck (neck ratio 0.98 at sigma = 1000, t = 3.1), so today they',
+         'are incomplete buds, and the brackets below are those of the *protrusion* threshold 0.95 from a flat',
+         'start. A neck forms only with resolution: with two levels of refinement at the interface',
+         '(`Mesh/Maximum refinement level = 2`) the same sigma = 1000 run has neck ratio 0.94 at t = 1.3,',
+         '0.77 at t = 2.2 and 0.71 at t = 3.1 (neck radius 0.089 under a bud of radius 0.125), still',
+         'narrowing. `T_min` is defined from the protrusion and the energy ([workflow.md](workflow.md)) and',
+         'does not depend on the outcome class. `scripts/continuation.py` follows both branches (flat start',
+         'and budded state) in sigma ([workflow.md](workflow.md)).' + '\n']
 for name, column, panel, symbol, paper_sign in STUDIES:
     path = os.path.join(studies, name, 'results.csv')
     if not os.path.exists(path):

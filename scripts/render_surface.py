@@ -522,6 +522,8 @@ def main():
     parser.add_argument('--index', type=int, help='PVD: the snapshot with this index (negative: from the end)')
     add_common_options(parser)
     args = parser.parse_args()
+    if not os.path.isfile(args.input):
+        parser.error(f'{args.input} does not exist (a .vtu, .pvtu or .pvd file of a run)')
     pixels = render_image(args.input, time=args.time, index=args.index, **options_from(args))
     save_png(pixels, args.output)
 

@@ -55,6 +55,7 @@ namespace Membrane
     stats.set("area_error", area_error);
     stats.set("shape_mass_correction", shape_mass_correction);
     stats.set("error_estimate", error_estimate);
+    stats.set("step_error", step_error);
     stats.set("area_projections", area_projections);
     stats.set("solver_iterations", solver_iterations);
     stats.set("cells", triangulation.n_global_active_cells());

@@ -184,7 +184,8 @@ namespace Membrane
     const double rise = energy.total() - before.energy.total();
     if (rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
       return restore("the energy would rise by " + format(rise));
-    error_estimate = step_control.controls_accuracy() && previous_tau > 0 ? estimate_error(tau_trial) : -1;
+    step_error     = previous_tau > 0 ? local_error(tau_trial) : -1;
+    error_estimate = step_control.controls_accuracy() && step_error >= 0 ? step_error / step_control.accuracy() : -1;
     if (error_estimate > 1)
       {
         rejection_factor = TimeStepController::shrink_factor(error_estimate);
@@ -194,7 +195,7 @@ namespace Membrane
     return {};
   }
 
-  double Simulator::estimate_error(const double tau) const
+  double Simulator::local_error(const double tau) const
   {
     // First-order steps: the local error is about half the change of the increment
     // against the previous velocity, tau^2/2 |dV/dt|. Shape in cells, phi absolute.
@@ -204,6 +205,6 @@ namespace Membrane
     shape.add(-ratio, previous_increment);
     Vector phase = step_phi_change;
     phase.add(-ratio, previous_phi_change);
-    return 0.5 * std::max(shape.linfty_norm() / cell_size, phase.linfty_norm()) / step_control.accuracy();
+    return 0.5 * std::max(shape.linfty_norm() / cell_size, phase.linfty_norm());
   }
 } // namespace Membrane

@@ -8,8 +8,11 @@ build/membrane-flow (also first on PATH as `membrane-flow`) runs the real progra
 options, files and scripts exist and work together, not the science. Each command must exit
 with 0 (or the code listed in EXPECTED_CODES, with the reason).
 
-Each command starts without a results/ directory, except the page generators that read the
-results of the command before them. Not run: ./scripts/setup.sh and ./scripts/test.sh (they install packages and run this suite).
+The commands run in the order of the documents (README first), as a reader would, so a
+command may use the results of an earlier one; the stand-in adds --overwrite, so a command
+that runs into a directory an earlier one wrote is not refused. A shell variable set by an
+assignment line (R=...) holds for the rest of its block. The Python module is importable as
+after the setup command (PYTHONPATH points at the build). Not run: ./scripts/setup.sh and ./scripts/test.sh (they install packages and run this suite).
 Placeholders the docs use are created first: my_run.prm (experiments/default.prm),
 my_sweep.json (two line tensions of 7.3) and hosts (an MPI host file for this machine).
 Usage: test_docs_commands.py <source dir> <membrane-flow> <bench_cahn_hilliard> [<filter>]"""
@@ -30,17 +33,22 @@ NOT_RUN = {"./scripts/setup.sh", "./scripts/test.sh"}
 # give the same outcome and exits with 1, as documented in docs/workflow.md.
 EXPECTED_CODES = {"scripts/critical_value.py": 1}
 MAX_STEPS = 3
-READERS = ("make_experiment_docs.py", "make_gallery.py")
 
 
 def commands(path):
-    """Shell commands of the ```sh blocks of a Markdown file (continuation lines joined)."""
+    """Shell commands of the ```sh blocks of a Markdown file (continuation lines joined),
+    each with the variable assignments made before it in its block."""
     text = open(path).read()
     for block in re.findall(r"```sh\n(.*?)```", text, re.S):
+        assignments = []
         for command in block.replace("\\\n", " ").splitlines():
-            command = command.strip()
-            if command and not command.startswith("#"):
-                yield re.sub(r"\s+#.*$", "", command)
+            command = re.sub(r"\s+#.*$", "", command.strip())
+            if not command or command.startswith("#"):
+                continue
+            if re.fullmatch(r"[A-Za-z_][A-Za-z_0-9]*=\S*", command):
+                assignments.append(command)
+                continue
+            yield "; ".join(assignments + [command])
 
 
 def make_copy():
@@ -59,7 +67,7 @@ def make_copy():
 for a in "$@"; do
   case "$a" in --print-parameters*|--help|--version) exec "{exe}" "$@";; esac
 done
-exec "{exe}" "$@" --set "Time stepping/Maximum steps={MAX_STEPS}"
+exec "{exe}" "$@" --overwrite --set "Time stepping/Maximum steps={MAX_STEPS}"
 ''')
     os.chmod(wrapper, 0o755)
     shutil.copy(os.path.join(work, "experiments", "default.prm"), os.path.join(work, "my_run.prm"))
@@ -76,7 +84,8 @@ documents = [os.path.join(source, "README.md")] + sorted(glob.glob(os.path.join(
 work = make_copy()
 env = dict(os.environ, PATH=os.path.join(work, "build") + os.pathsep + os.environ["PATH"],
            OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
-           OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+           OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1",
+           PYTHONPATH=os.path.join(os.path.dirname(exe), "python"))
 failures, ran, seen = [], 0, set()
 for document in documents:
     for command in commands(document):
@@ -84,10 +93,6 @@ for document in documents:
         if command in NOT_RUN or command in seen or (only and only not in command):
             continue
         seen.add(command)
-        # Each command starts without results, as on a fresh clone, except those that
-        # read the results of the command before them.
-        if not any(reader in command for reader in READERS):
-            shutil.rmtree(os.path.join(work, "results"), ignore_errors=True)
         start = time.time()
         try:
             result = subprocess.run(["bash", "-c", command], cwd=work, env=env, capture_output=True, text=True,

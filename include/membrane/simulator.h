@@ -111,8 +111,9 @@ namespace Membrane
     void      resume();
     void      warn_if_unresolved() const;
     Rejection try_step(double tau);
-    /// The local error estimate of the trial step relative to the accuracy tolerance.
-    double    estimate_error(double tau) const;
+    /// The local error estimate of the trial step: half the change of its increment
+    /// against the previous step's velocity, in cells for the shape and absolute for phi.
+    double    local_error(double tau) const;
     /// Shape step and its area projections; false if a solve gave non-finite values.
     bool      move_shape(double tau, const Vector &phi_new);
     /// Grid control of the Lagrangian state X~, kept if F^{m+1} <= F^m.
@@ -171,7 +172,7 @@ namespace Membrane
     /// the trial's error estimate relative to the tolerance, and the factor for tau
     /// after a rejection.
     Vector step_increment, step_phi_change, previous_increment, previous_phi_change;
-    double previous_tau = 0, error_estimate = -1, rejection_factor = 0.5;
+    double previous_tau = 0, error_estimate = -1, step_error = -1, rejection_factor = 0.5;
     /// Mesh adaptation: the level of the input mesh, the number of adaptations and the
     /// sum of their energy changes (not steps of the gradient flow).
     unsigned int base_level = 0, adaptations = 0;
