@@ -30,7 +30,7 @@ EXPERIMENTS = [
     ('7.4C-sigma630', 'complete bud (sigma = 630)', 15),
     ('7.4C-sigma1000', '(not in the paper) the 7.4 C setup above the critical sigma of this discretization', 10),
     ('7.4D-small-domain', 'the smaller domain does not bud where the larger one (7.4 C) does', 20),
-    ('7.4D-sigma1000', '(not in the paper) the smaller domain at sigma = 1000, where the larger one (7.4 C\') buds completely', 15),
+    ('7.4D-sigma1000', '(not in the paper) the smaller domain at sigma = 1000, where the larger one (7.4 C\') protrudes like a sphere', 15),
     ('7.4E-opposite-side', 'the bud forms on the side opposite to the initial bump', 10),
 ]
 
