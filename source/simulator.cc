@@ -34,9 +34,9 @@ namespace Membrane
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
     , triangulation(communicator)
-    , surface(triangulation, true)
-    , cahn_hilliard(triangulation, true)
-    , shape_solver(triangulation, true)
+    , surface(triangulation, !parameters.reference.closed())
+    , cahn_hilliard(triangulation, !parameters.reference.closed())
+    , shape_solver(triangulation, !parameters.reference.closed())
     , step_control({parameters.adaptive, parameters.min_time_step, parameters.max_time_step, parameters.growth_factor,
                     parameters.accuracy_tolerance},
                    parameters.time_step)
@@ -47,8 +47,7 @@ namespace Membrane
   void Simulator::setup()
   {
     TimerOutput::Scope scope(timer, "setup");
-    make_periodic_unit_square(triangulation, parameters.cells_per_side);
-    base_level = factor_cells_per_side(parameters.cells_per_side).second;
+    make_reference_surface();
     if (!parameters.resume_from.empty())
       refine_like_checkpoint(parameters.resume_from, triangulation, parameters.cells_per_side,
                              base_level + parameters.adaptivity.max_level);
@@ -85,6 +84,7 @@ namespace Membrane
     energy             = compute_energy(surface, geometry, phi, parameters.material);
     initial_mass       = integrate(surface, phi);
     initial_area       = surface.area();
+    initial_volume     = closed() ? enclosed_volume(surface) : 0.0;
     reference_areas    = vertex_areas(surface);
     step_control.set_tau(parameters.time_step);
     cell_quality       = min_corner_sine(surface, geometry.normal);
@@ -118,6 +118,8 @@ namespace Membrane
     grid_control_skipped = static_cast<unsigned int>(scalars.at("grid_control_skipped"));
     initial_area       = scalars.at("initial_area");
     initial_mass       = scalars.at("initial_mass");
+    if (scalars.count("initial_volume"))
+      initial_volume = scalars.at("initial_volume");
     next_output_time   = scalars.at("next_output_time");
     if (scalars.count("wall_seconds"))
       earlier_wall_seconds = scalars.at("wall_seconds"); // the run's wall time counts all its segments
@@ -183,7 +185,8 @@ namespace Membrane
     segment_start_time = time;
     warn_if_unresolved();
     write_run_info();
-    pcout << "Membrane patch: " << triangulation.n_global_active_cells() << " cells, "
+    pcout << (closed() ? "Vesicle (" + parameters.reference.type + "): " : std::string("Membrane patch: "))
+          << triangulation.n_global_active_cells() << " cells, "
           << surface.scalar_space().dof_handler().n_dofs() << " vertex DoFs, "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s); output in "
           << parameters.output_directory << "/\n";
@@ -203,7 +206,7 @@ namespace Membrane
         write_fields();
         next_output_time = parameters.output_interval;
       }
-    else
+    else if (!closed()) // the bud observables are those of the patch
       bud = measure_bud(surface, phi);
 
     RunResult  result{"end time", false, ""};
@@ -259,8 +262,7 @@ namespace Membrane
         grid_control_skipped += grid_move_skipped;
         record_statistics(trial);
         const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
-        step_control.accept(trial, max_increment, 1.0 / (parameters.cells_per_side << finest_level()), change,
-                            error_estimate);
+        step_control.accept(trial, max_increment, reference_cell_size(), change, error_estimate);
         previous_increment  = step_increment;
         previous_phi_change = step_phi_change;
         previous_tau        = trial;
