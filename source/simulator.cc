@@ -4,6 +4,7 @@
 #include <membrane/io/log_file.h>
 #include <membrane/io/stop_signal.h>
 #include <membrane/simulator.h>
+#include <membrane/surface/closed_surfaces.h>
 #include <membrane/surface/grid_control.h>
 #include <membrane/surface/initial_shapes.h>
 
@@ -76,6 +77,8 @@ namespace Membrane
       set_cosine_modes(surface, parse_cosine_modes(parameters.cosine_modes, "Initial shape/Cosine modes"));
     else if (parameters.shape == "expression")
       set_displacement_expression(surface, parameters.displacement_expression, "Initial shape/Displacement expression");
+    if (closed())
+      set_analytic_displacement(surface, parameters.reference); // refined initial meshes: onto the sphere/ellipsoid
 
     phi                = surface.scalar_space().ghosted_copy(make_initial_phase(surface, parameters.initial_phase));
     chemical_potential = surface.scalar_space().make_ghosted();

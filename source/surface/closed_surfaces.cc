@@ -1,4 +1,6 @@
 #include <membrane/surface/closed_surfaces.h>
+#include <membrane/surface/initial_shapes.h>
+#include <membrane/surface/surface.h>
 
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
@@ -91,6 +93,33 @@ namespace Membrane
     if (options.type == "sphere" || options.type == "ellipsoid")
       return 6.0 * options.cells_per_side * options.cells_per_side + 2;
     return 0;
+  }
+
+  void set_analytic_displacement(Surface &surface, const ReferenceSurfaceOptions &options)
+  {
+    if (options.type != "sphere" && options.type != "ellipsoid")
+      return;
+    class RadialProjection : public Function<spacedim>
+    {
+    public:
+      explicit RadialProjection(const std::array<double, 3> &axes)
+        : Function<spacedim>(spacedim)
+        , axes(axes)
+      {}
+      double value(const Point<spacedim> &x, const unsigned int component) const override
+      {
+        // x / |x|_A with |x|_A^2 = sum (x_i / a_i)^2 lies on the ellipsoid (sphere: a_i = R).
+        double norm = 0;
+        for (unsigned int i = 0; i < spacedim; ++i)
+          norm += (x[i] / axes[i]) * (x[i] / axes[i]);
+        return x[component] / std::sqrt(norm) - x[component];
+      }
+      const std::array<double, 3> axes;
+    };
+    const std::array<double, 3> axes =
+      options.type == "sphere" ? std::array<double, 3>{{options.radius, options.radius, options.radius}}
+                               : options.semi_axes;
+    set_displacement(surface, RadialProjection(axes));
   }
 
   void make_closed_surface(Triangulation &triangulation, const ReferenceSurfaceOptions &options)

@@ -22,6 +22,8 @@
 
 namespace Membrane
 {
+  class Surface;
+
   struct ReferenceSurfaceOptions
   {
     std::string             type           = "periodic patch"; ///< periodic patch|sphere|ellipsoid|file
@@ -39,6 +41,12 @@ namespace Membrane
   /// not a closed, consistently oriented quadrilateral 2-manifold, or a cell count
   /// that is not a power of 2.
   void make_closed_surface(Triangulation &triangulation, const ReferenceSurfaceOptions &options);
+
+  /// Sphere and ellipsoid: the displacement that moves every reference vertex radially onto
+  /// the analytic surface (zero on the input mesh, whose vertices lie on it; after the
+  /// initial refinement it puts the new vertices there instead of on the bilinear cells).
+  /// Nothing for the other types.
+  void set_analytic_displacement(Surface &surface, const ReferenceSurfaceOptions &options);
 
   /// Number of reference vertices before the mesh is built (for the memory estimate);
   /// 0 if unknown (file).
