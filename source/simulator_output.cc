@@ -21,8 +21,7 @@ namespace Membrane
     const double area = surface.area();
     const double mass = integrate(surface, phi);
     area_error        = max_relative_difference(vertex_areas(surface), reference_areas);
-    if (!closed()) // the bud observables are those of the patch
-      bud = measure_bud(surface, phi);
+    bud = closed() ? measure_vesicle_bud() : measure_bud(surface, phi);
     stats.set("step", step);
     stats.set("time", time);
     stats.set("tau", tau_used);

@@ -62,14 +62,16 @@ namespace Membrane
     // Projecting it out within the step (same operator, one back-substitution)
     // keeps it from being corrected by the next step, whatever its tau.
     area_projections = 0;
-    if (options.correct_area)
+    const bool fixed_volume = volume_term(tau_trial).fixed && !shape_solver.volume_held_by_areas();
+    if (options.correct_area || fixed_volume)
       {
         TimerOutput::Scope scope(timer, "area projection");
         // With a fixed volume each projection also restores V; a last one with the volume
         // defect alone removes the O(|W'|^2) volume error of the area corrections, which
         // stay large where the stabilized area row cannot be met exactly.
-        const bool         fixed_volume = volume_term(tau_trial).fixed && !shape_solver.volume_held_by_areas();
-        const unsigned int projections  = options.area_corrections + (fixed_volume ? 1 : 0);
+        // (The volume projection is made without the area ones too, Correct area = false.)
+        const unsigned int projections =
+          (options.correct_area ? options.area_corrections : 0) + (fixed_volume ? 1 : 0);
         for (unsigned int k = 0; k < projections; ++k)
           {
             const bool           volume_only = fixed_volume && k + 1 == projections;

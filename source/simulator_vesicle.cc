@@ -1,5 +1,6 @@
 // Closed vesicles in a run (MODEL.md section 8): the reference surface, the volume
 // term of each shape step and the vesicle columns of the statistics. Part of Simulator.
+#include <membrane/analysis/vesicle_domain.h>
 #include <membrane/simulator.h>
 #include <membrane/surface/closed_surfaces.h>
 #include <membrane/surface/gauss_map.h>
@@ -93,6 +94,17 @@ namespace Membrane
     phi = corrected;
   }
 
+  BudShape Simulator::measure_vesicle_bud() const
+  {
+    // The patch's height and neck observables have no meaning on a vesicle; the domain
+    // protrusion, measured along the vesicle's domain axis, feeds the outcome classification.
+    const VesicleDomain domain = measure_vesicle_domain(surface, phi);
+    BudShape            shape;
+    shape.domain_area       = domain.domain_area;
+    shape.domain_protrusion = domain.protrusion;
+    return shape;
+  }
+
   void Simulator::record_vesicle_statistics()
   {
     // The mean normal stress jump p + <H gamma>: on a sphere, where a uniform surface
@@ -125,6 +137,7 @@ namespace Membrane
     stats.set("laplace_pressure", volume_pressure + tension_jump);
     stats.set("volume_compliance", parameters.volume.constraint == "free" ? 1.0 : shape_solver.volume_compliance());
     stats.set("integral_K", integrate(surface, geometry.gauss_curvature));
+
     stats.set("gauss_map_area", gauss_map_area(surface, geometry.normal));
   }
 } // namespace Membrane

@@ -1,5 +1,6 @@
 #pragma once
-// A run: builds the periodic patch and its initial state from the parameters,
+// A run: builds the periodic patch or a closed vesicle (simulator_vesicle.cc) and its
+// initial state from the parameters,
 // advances the time loop, and writes fields, statistics, the parameters used,
 // the code version, checkpoints and a summary into the output directory.
 //
@@ -116,6 +117,8 @@ namespace Membrane
     void           make_reference_surface();
     VolumeCoupling volume_term(double tau) const;
     void           record_vesicle_statistics();
+    /// The domain observables of a vesicle (analysis/vesicle_domain.h) as a BudShape.
+    BudShape       measure_vesicle_bud() const;
     /// After grid control: a uniform normal shift alpha nu (Newton on alpha) puts V back on
     /// V_target(t_{m+1}); a constant restores integral phi ds.
     void           restore_volume();
