@@ -209,8 +209,8 @@ namespace Membrane
         write_fields();
         next_output_time = parameters.output_interval;
       }
-    else if (!closed()) // the bud observables are those of the patch
-      bud = measure_bud(surface, phi);
+    else
+      bud = closed() ? measure_vesicle_bud() : measure_bud(surface, phi);
 
     RunResult  result{"end time", false, ""};
     const auto finished = [&]() { return time >= parameters.end_time * (1 - 1e-12); };
