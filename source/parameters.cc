@@ -1,5 +1,6 @@
 #include <membrane/parameters.h>
 #include <membrane/surface/initial_shapes.h>
+#include <membrane/vesicle_parameters.h>
 
 #include <deal.II/base/mpi.h>
 
@@ -72,10 +73,11 @@ namespace Membrane
       prm.leave_subsection();
 
       prm.enter_subsection("Initial phase");
-      prm.declare_entry("Type", "random", Patterns::Selection("random|bump|uniform|expression"),
+      prm.declare_entry("Type", "random", Patterns::Selection("random|bump|uniform|expression|caps"),
                         "random: uniform in [Random min, Random max] per vertex (seeded, independent of the number "
                         "of MPI ranks); bump: -1 + a3 (1 + cos(pi rho/R0)) on the Initial shape's bump disc; "
-                        "uniform: Uniform value; expression: phi0(x, y).");
+                        "uniform: Uniform value; expression: phi0(x, y); caps: polar cap domains on a closed surface (Cap "
+                        "axes, Cap area fraction, Cap profile).");
       prm.declare_entry("Random min", "-0.2", Patterns::Double(-1.5, 1.5), "b: lower bound of the random phi0.");
       prm.declare_entry("Random max", "0.2", Patterns::Double(-1.5, 1.5), "c: upper bound of the random phi0.");
       prm.declare_entry("Seed", "1", Patterns::Integer(0), "Seed of the random phi0.");
@@ -203,6 +205,7 @@ namespace Membrane
     prm.leave_subsection();
     declare_material(prm);
     declare_numerics(prm);
+    declare_vesicle_parameters(prm);
   }
 
   void Parameters::parse(ParameterHandler &prm)
@@ -311,6 +314,7 @@ namespace Membrane
     write_vtu        = prm.get_bool("Write VTU");
     prm.leave_subsection();
 
+    parse_vesicle_parameters(prm, *this);
     check_parameter_combinations(*this);
   }
 
@@ -412,6 +416,15 @@ namespace Membrane
 
   double initial_area_bound(const Parameters &parameters, bool *exact)
   {
+    if (parameters.reference.closed())
+      {
+        // A sphere's area is known; an ellipsoid's or a file's only after the mesh is built.
+        if (exact)
+          *exact = parameters.reference.type == "sphere";
+        return parameters.reference.type == "sphere"
+                 ? 4 * M_PI * parameters.reference.radius * parameters.reference.radius
+                 : 0.0;
+      }
     if (exact)
       *exact = parameters.shape == "flat" || parameters.shape == "bump";
     if (parameters.shape == "flat")
@@ -478,7 +491,8 @@ namespace Membrane
                                  "(integral of phi0 over the initial surface) must lie strictly between -A and A, "
                                  "where A is the initial area (phi = -1 and +1 are the pure phases); " +
                                  std::string(exact ? "A = " + number(area) +
-                                                       (parameters.shape == "bump" ? " (<Initial shape/Bump area>)"
+                                                       (parameters.reference.closed() ? " (the sphere)" :
+                                                        parameters.shape == "bump" ? " (<Initial shape/Bump area>)"
                                                                                    : " (flat patch)")
                                                    : "A <= " + number(area) + " (upper bound for these <Initial "
                                                                               "shape/Cosine modes>)") +
@@ -496,7 +510,9 @@ namespace Membrane
   {
     MemoryEstimate estimate;
     const double   n       = cells_per_side > 0 ? cells_per_side : parameters.cells_per_side;
-    const double   v       = (n + 1) * (n + 1);
+    // A cube-sphere has 6 n^2 + 2 vertices (a file mesh is counted as a patch).
+    const bool     cube    = closed_surface_vertices(parameters.reference) > 0;
+    const double   v       = cube ? 6 * n * n + 2 : (n + 1) * (n + 1);
     const double   safety  = 1.5;
     const double   per_rank = 200e6;
     estimate.vertices      = v;

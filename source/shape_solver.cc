@@ -225,23 +225,31 @@ namespace Membrane
   ShapeUpdate ShapeSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
                                 const ShapeOptions &options, const LinearSolverOptions &solver_options,
                                 const double tau, const Vector &area_defect, const Vector &phi,
-                                const Vector &potential, TimerOutput *timer)
+                                const Vector &potential, TimerOutput *timer, const VolumeCoupling &volume_term)
   {
+    volume = volume_term;
     {
       std::optional<TimerOutput::Scope> scope;
       if (timer)
         scope.emplace(*timer, "shape assembly");
       assemble(surface, geometry, material, options, tau, phi, potential);
       add_area_defect(surface, area_defect);
+      if (volume.active)
+        assemble_volume_coupling(surface, geometry, tau * material.shape_mobility);
     }
     if (!solver)
       solver = std::make_unique<LinearSolver>(solver_options);
     return solve(surface, timer);
   }
 
-  ShapeUpdate ShapeSolver::correct_area(const Surface &surface, const Vector &area_defect, TimerOutput *timer)
+  ShapeUpdate ShapeSolver::correct_area(const Surface &surface, const Vector &area_defect, TimerOutput *timer,
+                                        const VolumeCoupling &volume_term)
   {
     Assert(solver, ExcMessage("correct_area() needs a step() first"));
+    Assert(volume_term.active == volume.active, ExcMessage("the volume term must be that of the step"));
+    const double scale      = volume.compliance_scale; // of the step's operator
+    volume                  = volume_term;
+    volume.compliance_scale = scale;
     rhs = 0;
     add_area_defect(surface, area_defect);
     return solve(surface, timer, /*same_matrix=*/true);
@@ -259,6 +267,7 @@ namespace Membrane
       else
         solver->solve(matrix, solution, rhs);
     }
+    const double volume_pressure = volume.active ? apply_volume_coupling(solution, same_matrix) : 0.0;
     space.constraints().distribute(solution);
     const Vector ghosted = space.ghosted_copy(solution);
 
@@ -268,6 +277,7 @@ namespace Membrane
       copy_component(space, ghosted, c, surface.vector_space(), update.increment, c);
     copy_component(space, ghosted, pressure_component, surface.scalar_space(), update.pressure);
     copy_component(space, ghosted, curvature_component, surface.scalar_space(), update.mean_curvature);
+    update.volume_pressure = volume_pressure;
     return update;
   }
 } // namespace Membrane

@@ -4,6 +4,7 @@
 #include <membrane/io/log_file.h>
 #include <membrane/io/stop_signal.h>
 #include <membrane/simulator.h>
+#include <membrane/surface/closed_surfaces.h>
 #include <membrane/surface/grid_control.h>
 #include <membrane/surface/initial_shapes.h>
 
@@ -34,9 +35,9 @@ namespace Membrane
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
     , triangulation(communicator)
-    , surface(triangulation, true)
-    , cahn_hilliard(triangulation, true)
-    , shape_solver(triangulation, true)
+    , surface(triangulation, !parameters.reference.closed())
+    , cahn_hilliard(triangulation, !parameters.reference.closed())
+    , shape_solver(triangulation, !parameters.reference.closed())
     , step_control({parameters.adaptive, parameters.min_time_step, parameters.max_time_step, parameters.growth_factor,
                     parameters.accuracy_tolerance},
                    parameters.time_step)
@@ -47,8 +48,7 @@ namespace Membrane
   void Simulator::setup()
   {
     TimerOutput::Scope scope(timer, "setup");
-    make_periodic_unit_square(triangulation, parameters.cells_per_side);
-    base_level = factor_cells_per_side(parameters.cells_per_side).second;
+    make_reference_surface();
     if (!parameters.resume_from.empty())
       refine_like_checkpoint(parameters.resume_from, triangulation, parameters.cells_per_side,
                              base_level + parameters.adaptivity.max_level);
@@ -77,6 +77,8 @@ namespace Membrane
       set_cosine_modes(surface, parse_cosine_modes(parameters.cosine_modes, "Initial shape/Cosine modes"));
     else if (parameters.shape == "expression")
       set_displacement_expression(surface, parameters.displacement_expression, "Initial shape/Displacement expression");
+    if (closed())
+      set_analytic_displacement(surface, parameters.reference); // refined initial meshes: onto the sphere/ellipsoid
 
     phi                = surface.scalar_space().ghosted_copy(make_initial_phase(surface, parameters.initial_phase));
     chemical_potential = surface.scalar_space().make_ghosted();
@@ -85,6 +87,7 @@ namespace Membrane
     energy             = compute_energy(surface, geometry, phi, parameters.material);
     initial_mass       = integrate(surface, phi);
     initial_area       = surface.area();
+    initial_volume     = closed() ? enclosed_volume(surface) : 0.0;
     reference_areas    = vertex_areas(surface);
     step_control.set_tau(parameters.time_step);
     cell_quality       = min_corner_sine(surface, geometry.normal);
@@ -118,6 +121,8 @@ namespace Membrane
     grid_control_skipped = static_cast<unsigned int>(scalars.at("grid_control_skipped"));
     initial_area       = scalars.at("initial_area");
     initial_mass       = scalars.at("initial_mass");
+    if (scalars.count("initial_volume"))
+      initial_volume = scalars.at("initial_volume");
     next_output_time   = scalars.at("next_output_time");
     if (scalars.count("wall_seconds"))
       earlier_wall_seconds = scalars.at("wall_seconds"); // the run's wall time counts all its segments
@@ -205,7 +210,8 @@ namespace Membrane
     segment_start_time = time;
     warn_if_unresolved();
     write_run_info();
-    pcout << "Membrane patch: " << triangulation.n_global_active_cells() << " cells, "
+    pcout << (closed() ? "Vesicle (" + parameters.reference.type + "): " : std::string("Membrane patch: "))
+          << triangulation.n_global_active_cells() << " cells, "
           << surface.scalar_space().dof_handler().n_dofs() << " vertex DoFs, "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s); output in "
           << parameters.output_directory << "/\n";
@@ -217,7 +223,7 @@ namespace Membrane
         next_output_time = parameters.output_interval;
       }
     else
-      bud = measure_bud(surface, phi);
+      bud = closed() ? measure_vesicle_bud() : measure_bud(surface, phi);
   }
 
   bool Simulator::advance()
@@ -272,8 +278,7 @@ namespace Membrane
     grid_control_skipped += grid_move_skipped;
     record_statistics(trial);
     const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
-    step_control.accept(trial, max_increment, 1.0 / (parameters.cells_per_side << finest_level()), change,
-                        error_estimate);
+    step_control.accept(trial, max_increment, reference_cell_size(), change, error_estimate);
     previous_increment  = step_increment;
     previous_phi_change = step_phi_change;
     previous_tau        = trial;

@@ -14,12 +14,12 @@ namespace Membrane
 
   namespace
   {
-    using CellKey = std::tuple<int, double, double>; ///< level and reference centre
+    using CellKey = std::tuple<int, double, double, double>; ///< level and reference centre (x, y, z: closed surfaces)
 
     CellKey key(const typename Triangulation::cell_iterator &cell)
     {
       const auto c = cell->center();
-      return {cell->level(), c[0], c[1]};
+      return {cell->level(), c[0], c[1], c[2]};
     }
 
     /// Place the vertices created by refining the cells in `split` on a smooth surface

@@ -21,7 +21,7 @@ namespace Membrane
     const double area = surface.area();
     const double mass = integrate(surface, phi);
     area_error        = max_relative_difference(vertex_areas(surface), reference_areas);
-    bud               = measure_bud(surface, phi);
+    bud = closed() ? measure_vesicle_bud() : measure_bud(surface, phi);
     stats.set("step", step);
     stats.set("time", time);
     stats.set("tau", tau_used);
@@ -64,6 +64,8 @@ namespace Membrane
     stats.set("adaptations", adaptations);
     stats.set("adaptation_energy_jump", adaptation_energy_jump);
     stats.set("wall_seconds", earlier_wall_seconds + wall.wall_time());
+    if (closed())
+      record_vesicle_statistics();
     stats.end_row();
   }
 
@@ -103,7 +105,8 @@ namespace Membrane
                      {"adaptations", adaptations},
                      {"cells_per_side", parameters.cells_per_side},
                      {"wall_seconds", earlier_wall_seconds + wall.wall_time()},
-                     {"adaptation_energy_jump", adaptation_energy_jump}},
+                     {"adaptation_energy_jump", adaptation_energy_jump},
+                     {"initial_volume", initial_volume}},
                     stats.to_text(), options.parameter_text);
   }
 
@@ -150,6 +153,10 @@ namespace Membrane
                           "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error", "cells",
                           "adaptations", "adaptation_energy_jump"})
       summary.add(c, stats.last(c));
+    if (closed())
+      for (const char *c : {"volume", "volume_drift", "reduced_volume", "pressure", "laplace_pressure", "integral_K",
+                            "gauss_map_area"})
+        summary.add(c, stats.last(c));
     write_file_atomically(parameters.output_directory + "/summary.json", summary.str());
   }
 } // namespace Membrane

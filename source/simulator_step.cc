@@ -41,7 +41,8 @@ namespace Membrane
   {
     const ShapeOptions &options = parameters.shape_options;
     ShapeUpdate update = shape_solver.step(surface, geometry, parameters.material, options, parameters.linear_solver,
-                                           tau_trial, area_defect(), phi, chemical_potential, &timer);
+                                           tau_trial, area_defect(), phi, chemical_potential, &timer,
+                                           volume_term(tau_trial));
     Vector moved = surface.vector_space().make_owned();
     moved        = surface.displacement();
     const auto apply = [&](const ShapeUpdate &part) {
@@ -56,24 +57,40 @@ namespace Membrane
     max_increment  = update.increment.linfty_norm();
     step_increment = update.increment;
     Vector gamma  = update.pressure;
+    volume_pressure = update.volume_pressure;
     // The linearized constraint leaves an O(|grad W|^2) area error in every step.
     // Projecting it out within the step (same operator, one back-substitution)
     // keeps it from being corrected by the next step, whatever its tau.
     area_projections = 0;
-    if (options.correct_area)
+    const bool fixed_volume = volume_term(tau_trial).fixed && !shape_solver.volume_held_by_areas();
+    if (options.correct_area || fixed_volume)
       {
         TimerOutput::Scope scope(timer, "area projection");
-        for (unsigned int k = 0; k < options.area_corrections; ++k)
+        // With a fixed volume each projection also restores V; a last one with the volume
+        // defect alone removes the O(|W'|^2) volume error of the area corrections, which
+        // stay large where the stabilized area row cannot be met exactly.
+        // (The volume projection is made without the area ones too, Correct area = false.)
+        const unsigned int projections =
+          (options.correct_area ? options.area_corrections : 0) + (fixed_volume ? 1 : 0);
+        for (unsigned int k = 0; k < projections; ++k)
           {
-            const Vector areas = vertex_areas(surface);
-            if (max_relative_difference(areas, reference_areas) <= options.area_tolerance)
+            const bool           volume_only = fixed_volume && k + 1 == projections;
+            const Vector         areas  = vertex_areas(surface);
+            const VolumeCoupling volume = volume_term(tau_trial);
+            if ((volume_only || max_relative_difference(areas, reference_areas) <= options.area_tolerance) &&
+                (!fixed_volume || std::abs(volume.volume_defect) <= options.area_tolerance * initial_volume))
               break;
-            Vector defect = reference_areas;
-            defect -= areas;
-            const ShapeUpdate correction = shape_solver.correct_area(surface, defect, &timer);
+            Vector defect = surface.scalar_space().make_owned();
+            if (!volume_only)
+              {
+                defect = reference_areas;
+                defect -= areas;
+              }
+            const ShapeUpdate correction = shape_solver.correct_area(surface, defect, &timer, volume);
             if (!apply(correction))
               return false;
             gamma += correction.pressure;
+            volume_pressure += correction.volume_pressure;
             step_increment += correction.increment;
             ++area_projections;
           }
@@ -121,6 +138,8 @@ namespace Membrane
       // The reference area moves with the vertices, each keeping its relative error;
       // the total reference area is kept exactly.
       carry_reference_areas(ratio);
+      if (volume_term(trial_end_time - time).fixed && !shape_solver.volume_held_by_areas())
+        restore_volume(); // the tangential move changes the volume of the bilinear surface
     }
     update_geometry();
     if (std::isfinite(energy.total()) &&
@@ -141,6 +160,7 @@ namespace Membrane
       return why;
     };
     grid_move_skipped = false;
+    trial_end_time    = time + tau_trial;
 
     Vector phi_new   = surface.scalar_space().make_owned();
     Vector potential = surface.scalar_space().make_owned();
@@ -200,7 +220,7 @@ namespace Membrane
     // First-order steps: the local error is about half the change of the increment
     // against the previous velocity, tau^2/2 |dV/dt|. Shape in cells, phi absolute.
     const double ratio     = tau / previous_tau;
-    const double cell_size = 1.0 / (parameters.cells_per_side << finest_level());
+    const double cell_size = reference_cell_size();
     Vector       shape     = step_increment;
     shape.add(-ratio, previous_increment);
     Vector phase = step_phi_change;

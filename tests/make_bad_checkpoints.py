@@ -10,7 +10,7 @@ os.makedirs(out, exist_ok=True)
 lines = open(source).read().split('\n')
 first_vertex = next(i for i, line in enumerate(lines) if line.startswith('vertices')) + 1
 words = lines[first_vertex].split()
-words[5] = 'nan'  # phi of the first vertex
+words[6] = 'nan'  # phi of the first vertex (x y z D D D phi area)
 damaged = lines[:first_vertex] + [' '.join(words)] + lines[first_vertex + 1:]
 open(os.path.join(out, 'nan.txt'), 'w').write('\n'.join(damaged))
 text = '\n'.join(lines)

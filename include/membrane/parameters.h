@@ -6,9 +6,11 @@
 #include <membrane/cahn_hilliard.h>
 #include <membrane/physics/initial_phase.h>
 #include <membrane/physics/material.h>
+#include <membrane/physics/volume.h>
 #include <membrane/shape_solver.h>
 #include <membrane/solvers/linear_solver.h>
 #include <membrane/surface/adaptivity.h>
+#include <membrane/surface/closed_surfaces.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -23,6 +25,8 @@ namespace Membrane
     // Mesh
     unsigned int      cells_per_side = 32;
     AdaptivityOptions adaptivity;
+    ReferenceSurfaceOptions reference; ///< periodic patch or a closed surface (vesicle_parameters.cc)
+    VolumeOptions           volume;    ///< the enclosed volume of a closed surface
     // Initial shape
     std::string shape = "flat";
     double      bump_radius = 0.5, bump_area = 1.3;

@@ -41,6 +41,16 @@
 //    removes it within the step: the same operator (its factorization is reused)
 //    with the measured defect of X^m + W as the only right-hand side gives a
 //    constrained projection W' that is added to W.
+//
+// Closed surfaces (MODEL.md section 8; shape_solver_volume.cc): the enclosed volume
+// adds a global pressure p. Its force p n, tested with psi nu, enters the normal row
+// as - tau L_X p (n.nu, psi) on the left (p > 0 moves the surface along the outward
+// normal: it inflates). With a fixed volume p is the multiplier of the bordered row
+//   integral over Gamma^m of W.n ds = V_target - V(X^m),
+// solved with the factorization of the step: A y = r and A z = c (c: the p column)
+// give p = (b.y - g) / (b.z) and the solution y - p z (Schur complement of size 1).
+// Where the local area constraint already fixes V (near a sphere) b.z -> 0: below a
+// floor of the compliance -b.z / (tau L_X A) the row is dropped (shape_solver_volume.cc).
 
 #include <membrane/physics/material.h>
 #include <membrane/solvers/linear_solver.h>
@@ -67,6 +77,17 @@ namespace Membrane
     Vector increment;      ///< W = X^{m+1} - X^m (vector space)
     Vector pressure;       ///< gamma (scalar space)
     Vector mean_curvature; ///< H~ (scalar space)
+    double volume_pressure = 0; ///< p of the volume term (0 without one)
+  };
+
+  /// The global volume term of a closed surface in a shape step (see above).
+  struct VolumeCoupling
+  {
+    bool   active        = false; ///< false: no volume term (patch, or Volume/Constraint = free)
+    bool   fixed         = false; ///< true: p is the multiplier of integral W.n ds = volume_defect
+    double pressure      = 0;     ///< the prescribed p when not fixed (not added again by corrections)
+    double volume_defect = 0;     ///< V_target - V(X^m), or of X^m + W for a correction
+    double compliance_scale = 0;  ///< tau L_X A, set by the step (the free surface's -b.A^-1 c)
   };
 
   class ShapeSolver
@@ -81,12 +102,22 @@ namespace Membrane
     ShapeUpdate step(const Surface &surface, const Geometry &geometry, const Material &material,
                      const ShapeOptions &options, const LinearSolverOptions &solver, double tau,
                      const Vector &area_defect, const Vector &phi_ghosted, const Vector &potential_ghosted,
-                     dealii::TimerOutput *timer = nullptr);
+                     dealii::TimerOutput *timer = nullptr, const VolumeCoupling &volume = {});
 
     /// The projection of the last step's result back onto the area constraint: the
     /// last operator with the defect a_ref - a(X^m + W) as the only right-hand side.
     /// Its result is added to that of step(); it costs one back-substitution.
-    ShapeUpdate correct_area(const Surface &surface, const Vector &area_defect, dealii::TimerOutput *timer = nullptr);
+    /// With a fixed volume the projection also restores V = V_target (`volume`'s defect
+    /// is that of X^m + W); a prescribed pressure is not added again.
+    ShapeUpdate correct_area(const Surface &surface, const Vector &area_defect, dealii::TimerOutput *timer = nullptr,
+                             const VolumeCoupling &volume = {});
+
+    /// -b.A^-1 c / (tau L_X A) of the last step with a volume term: 1 for a free surface,
+    /// 0 where the local areas fix the volume; below the floor a fixed volume is left to them.
+    double volume_compliance() const { return compliance; }
+    bool   volume_held_by_areas() const { return compliance < volume_compliance_floor; }
+    /// See shape_solver_volume.cc.
+    static constexpr double volume_compliance_floor = 5e-3;
 
     /// Numeric factorizations so far (one per step, none for corrections).
     unsigned int n_factorizations() const { return solver ? solver->n_factorizations() : 0; }
@@ -97,11 +128,19 @@ namespace Membrane
     /// Add the vertex area defect to the right-hand side of the area equation.
     void add_area_defect(const Surface &surface, const Vector &area_defect);
     ShapeUpdate solve(const Surface &surface, dealii::TimerOutput *timer, bool same_matrix = false);
+    /// shape_solver_volume.cc: the p column c and the volume row b on Gamma^m.
+    void assemble_volume_coupling(const Surface &surface, const Geometry &geometry, double tau_mobility);
+    /// Eliminate p from the solution y of A y = r (z = A^-1 c computed after each new
+    /// factorization); returns p.
+    double apply_volume_coupling(Vector &solution, bool same_matrix);
 
     const bool                    periodic;
     FieldSpace                    space; ///< components: W (0-2), gamma (3), H~ (4), B~_1 (5), B~_2 (6)
     SparseMatrix                  matrix;
     Vector                        rhs;
     std::unique_ptr<LinearSolver> solver; ///< kept across steps: the ordering is reused
+    VolumeCoupling                volume;   ///< of the current solve
+    Vector pressure_column, volume_row, pressure_response; ///< c, b and z = A^-1 c of the last step
+    double compliance = 1; ///< volume_compliance()
   };
 } // namespace Membrane

@@ -1,5 +1,6 @@
 #pragma once
-// A run: builds the periodic patch and its initial state from the parameters,
+// A run: builds the periodic patch or a closed vesicle (simulator_vesicle.cc) and its
+// initial state from the parameters,
 // advances the time loop, and writes fields, statistics, the parameters used,
 // the code version, checkpoints and a summary into the output directory.
 //
@@ -133,6 +134,21 @@ namespace Membrane
     void         carry_reference_areas(const Vector &ratio_owned);
     /// Refinement level of the finest cell above the input mesh.
     unsigned int finest_level() const;
+    /// Closed surfaces (simulator_vesicle.cc): build the reference mesh (periodic patch
+    /// or closed surface), the volume term of a shape step or of its projection (target
+    /// at t_{m+1} = time + tau), and the vesicle columns of the statistics.
+    bool           closed() const { return parameters.reference.closed(); }
+    void           make_reference_surface();
+    VolumeCoupling volume_term(double tau) const;
+    void           record_vesicle_statistics();
+    /// The domain observables of a vesicle (analysis/vesicle_domain.h) as a BudShape.
+    BudShape       measure_vesicle_bud() const;
+    /// After grid control: a uniform normal shift alpha nu (Newton on alpha) puts V back on
+    /// V_target(t_{m+1}); a constant restores integral phi ds.
+    void           restore_volume();
+    /// Size of the finest cells of the input mesh (the patch: 1 / (Cells per side 2^level)),
+    /// the scale of shape increments for step control.
+    double         reference_cell_size() const;
     void      record_statistics(double tau);
     void      write_checkpoint() const;
     void      write_run_info() const;
@@ -166,6 +182,10 @@ namespace Membrane
     unsigned int step = 0, rejected_steps = 0, solver_iterations = 0, grid_control_skipped = 0;
     /// Observables of the last accepted step, for the statistics.
     double max_increment = 0, remap_correction = 0, cell_quality = 1, area_error = 0, shape_mass_correction = 0;
+    /// Closed surfaces: V_0, the volume pressure p of the last step (step and projections),
+    /// and the mean cell size of the input mesh.
+    double initial_volume = 0, volume_pressure = 0, input_cell_size = 0;
+    double trial_end_time = 0; ///< t_{m+1} of the trial step
     unsigned int area_projections = 0;
     /// Accuracy control: the physical increments of the trial step and of the last
     /// accepted one (owned), the tau of that one (0: none, e.g. after an adaptation),

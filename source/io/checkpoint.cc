@@ -17,10 +17,13 @@ namespace Membrane
 
   namespace
   {
-    constexpr const char *magic    = "membrane-checkpoint 2";
+    constexpr const char *magic    = "membrane-checkpoint 3";
+    constexpr const char *magic_v2 = "membrane-checkpoint 2";
     constexpr const char *magic_v1 = "membrane-checkpoint 1";
-    constexpr std::size_t fields = 7; ///< x, y, D (3), phi, reference area
-    using Key = std::pair<double, double>;
+    /// x, y, z, D (3), phi, reference area. z tells apart the vertices of a closed
+    /// surface that share x and y (formats 1 and 2, of the patch, have no z).
+    constexpr std::size_t fields = 8;
+    using Key = std::tuple<double, double, double>;
 
     /// Calls f(reference vertex, vector dofs[3], scalar dof) for every owned,
     /// unconstrained vertex of the scalar space.
@@ -47,7 +50,7 @@ namespace Membrane
 
   namespace
   {
-    using CellKey = std::tuple<int, double, double>; ///< level and reference centre of a cell
+    using CellKey = std::tuple<int, double, double, double>; ///< level and reference centre of a cell
 
     /// Every cell with children (level and reference centre), over all ranks.
     std::set<CellKey> refined_cells(const dealii::Triangulation<dim, spacedim> &triangulation)
@@ -59,12 +62,12 @@ namespace Membrane
             {
               parent = parent->parent();
               const auto c = parent->center();
-              local.insert(local.end(), {double(parent->level()), c[0], c[1]});
+              local.insert(local.end(), {double(parent->level()), c[0], c[1], c[2]});
             }
       std::set<CellKey> cells;
       for (const auto &part : Utilities::MPI::all_gather(triangulation.get_communicator(), local))
-        for (std::size_t i = 0; i < part.size(); i += 3)
-          cells.emplace(int(part[i]), part[i + 1], part[i + 2]);
+        for (std::size_t i = 0; i < part.size(); i += 4)
+          cells.emplace(int(part[i]), part[i + 1], part[i + 2], part[i + 3]);
       return cells;
     }
   } // namespace
@@ -107,13 +110,15 @@ namespace Membrane
           {
             std::istringstream cell(line);
             int                level;
-            double             x, y;
+            double             x, y, z = 0; // no z: a checkpoint of the patch in format 2
             cell >> level >> x >> y;
+            if (!(cell >> z))
+              z = 0;
             AssertThrow(level >= 0 && unsigned(level) < finest_level,
                         ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> was written on a mesh refined "
                                    "beyond what this run allows (check <Mesh/Cells per side> and <Mesh/Maximum "
                                    "refinement level>)"));
-            refined.emplace(level, x, y);
+            refined.emplace(level, x, y, z);
           }
       }
     // Refine level by level; p4est's 2:1 balance adds nothing, the saved mesh was balanced.
@@ -124,7 +129,7 @@ namespace Membrane
           if (cell->is_locally_owned())
             {
               const auto c = cell->center();
-              if (refined.count({cell->level(), c[0], c[1]}))
+              if (refined.count({cell->level(), c[0], c[1], c[2]}))
                 {
                   cell->set_refine_flag();
                   ++flagged;
@@ -202,7 +207,7 @@ namespace Membrane
       if (!seen.insert(dof).second)
         return;
       local.insert(local.end(),
-                   {x[0], x[1], D[vector_dofs[0]], D[vector_dofs[1]], D[vector_dofs[2]], phi[dof], areas[dof]});
+                   {x[0], x[1], x[2], D[vector_dofs[0]], D[vector_dofs[1]], D[vector_dofs[2]], phi[dof], areas[dof]});
     });
     const MPI_Comm comm  = surface.scalar_space().communicator();
     const auto     parts = Utilities::MPI::gather(comm, local, 0);
@@ -221,8 +226,8 @@ namespace Membrane
         out << line << '\n';
     }
     out << "refined " << refined.size() << '\n';
-    for (const auto &[level, x, y] : refined)
-      out << level << ' ' << x << ' ' << y << '\n';
+    for (const auto &[level, x, y, z] : refined)
+      out << level << ' ' << x << ' ' << y << ' ' << z << '\n';
     std::size_t n = 0;
     for (const auto &part : parts)
       n += part.size() / fields;
@@ -242,9 +247,10 @@ namespace Membrane
     std::ifstream in(path);
     AssertThrow(in, ExcMessage("Entry <Checkpoint/Resume from>: cannot open the checkpoint <" + path + ">"));
     std::string line;
-    AssertThrow(std::getline(in, line) && (line == magic || line == magic_v1),
+    AssertThrow(std::getline(in, line) && (line == magic || line == magic_v2 || line == magic_v1),
                 ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> is not a membrane checkpoint"));
-    const bool                    has_areas = line == magic;
+    const bool                    has_areas = line != magic_v1;
+    const bool                    has_z     = line == magic;
     std::map<std::string, double> scalars;
     std::size_t                   n = 0;
     while (std::getline(in, line))
@@ -274,17 +280,20 @@ namespace Membrane
         AssertThrow(std::getline(in, line), ExcMessage(name + " is truncated (vertex " + std::to_string(i) + " of " +
                                                        std::to_string(n) + ")"));
         std::istringstream    words(line);
-        double                x, y;
+        double                x, y, z = 0;
         std::array<double, 5> v{};
-        words >> x >> y >> v[0] >> v[1] >> v[2] >> v[3];
+        words >> x >> y;
+        if (has_z)
+          words >> z;
+        words >> v[0] >> v[1] >> v[2] >> v[3];
         if (has_areas)
           words >> v[4];
-        bool finite = !words.fail() && std::isfinite(x) && std::isfinite(y);
+        bool finite = !words.fail() && std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
         for (const double value : v)
           finite = finite && std::isfinite(value);
         AssertThrow(finite, ExcMessage(name + " is corrupt: vertex line " + std::to_string(i + 1) +
                                          " is not finite numbers: <" + line + ">"));
-        values[{x, y}] = v;
+        values[{x, y, z}] = v;
       }
     AssertThrow(std::getline(in, line) && line == "statistics", ExcMessage(name + " is truncated"));
     statistics_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -319,7 +328,7 @@ namespace Membrane
 
     bool all_found = true;
     for_each_owned_vertex(surface, [&](const Point<spacedim> &x, const auto &vector_dofs, const auto dof) {
-      const auto it = values.find({x[0], x[1]});
+      const auto it = values.find({x[0], x[1], x[2]});
       if (it == values.end())
         {
           all_found = false;

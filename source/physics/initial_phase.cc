@@ -76,6 +76,8 @@ namespace Membrane
       phi = vertex_field(surface, [&](const Point<spacedim> &p) {
         return options.random_min + (options.random_max - options.random_min) * hashed_uniform(options.seed, p);
       });
+    else if (options.type == "caps")
+      phi = make_cap_phase(surface, options);
     else if (options.type == "uniform")
       phi = vertex_field(surface, [&](const Point<spacedim> &) { return options.uniform_value; });
     else

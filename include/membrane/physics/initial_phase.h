@@ -6,7 +6,13 @@
 //              and of the DoF numbering;
 //  bump:       -1 + a3 (1 + cos(pi rho / R0)) for rho < R0 (MODEL.md section 5);
 //  uniform:    a constant;
-//  expression: a function of the reference point (x, y).
+//  expression: a function of the reference point (x, y);
+//  caps:       polar cap domains of phase A on a closed surface (cap_phase.cc): each
+//              cap is the set of points whose direction from the centroid lies within
+//              the angle theta_c of its axis, theta_c chosen so that the cap covers
+//              the given fraction of the area; sharp (+-1) or tanh(3 d / (4 xi)) with
+//              d = R (theta_c - theta), R = sqrt(A / 4 pi); several caps are joined
+//              (phi is the largest of their profiles).
 // With a prescribed mass M = integral phi0 ds (on the initial surface), bump
 // solves for a3 (phi0 is affine in a3); the other types add a constant.
 
@@ -14,6 +20,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace Membrane
 {
@@ -29,7 +36,17 @@ namespace Membrane
     double        bump_height   = 0.5; ///< a3 when the mass is not prescribed
     bool          prescribe_mass = false;
     double        mass           = 0;
+    std::vector<dealii::Tensor<1, spacedim>> cap_axes; ///< caps: unit axes, one per cap
+    double        cap_area_fraction = 0.1;  ///< caps: area fraction of each cap
+    bool          cap_sharp         = false; ///< caps: +-1 instead of the tanh profile
+    double        transition_length = 0.03;  ///< xi of the tanh profile
   };
+
+  /// Parse "x y z; x y z; ..." into unit vectors; throws naming `entry`.
+  std::vector<dealii::Tensor<1, spacedim>> parse_cap_axes(const std::string &text, const std::string &entry);
+
+  /// phi0 of Type = caps (owned, constraints applied; no mass prescription).
+  Vector make_cap_phase(const Surface &surface, const InitialPhaseOptions &options);
 
   /// A uniform number in [0, 1) determined by (seed, point) alone.
   double hashed_uniform(std::uint64_t seed, const dealii::Point<spacedim> &reference_point);
