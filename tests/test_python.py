@@ -157,7 +157,10 @@ with mf.Simulation(prm, dict(first, **{'Checkpoint/Resume from': os.path.join(sp
     check(part.steps == 5 and part.time == reference['time'][5], f"resumed at step 5, t = {part.time}")
     part.run()
     resumed = part.statistics()
-worst = max(relative_difference(resumed[c], reference[c]) for c in reference if not c.endswith('seconds'))
+# step_error needs the previous step's increments, which a checkpoint does not hold: it is
+# undefined (-1) on the first step after a resume (docs/model.md).
+worst = max(relative_difference(resumed[c], reference[c]) for c in reference
+            if not c.endswith('seconds') and c != 'step_error')
 check(worst <= 1e-10, f"5 steps + resume from the checkpoint = the program's run: worst difference {worst:.2e}")
 
 # ---- from a dict only, and two open at once closed in any order ---------------------------
