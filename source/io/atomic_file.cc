@@ -2,7 +2,9 @@
 
 #include <deal.II/base/exceptions.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
 namespace Membrane
@@ -25,7 +27,8 @@ namespace Membrane
       AssertThrow(out, dealii::ExcMessage("Cannot write <" + temporary_name(path) + ">"));
       out << content;
       out.flush();
-      AssertThrow(out, dealii::ExcMessage("Writing <" + temporary_name(path) + "> failed"));
+      AssertThrow(out, dealii::ExcMessage("Writing <" + temporary_name(path) + "> failed: " + std::strerror(errno) +
+                                          " (the file under its final name is unchanged)"));
     }
     commit_temporary(path);
   }

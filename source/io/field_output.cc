@@ -165,6 +165,13 @@ Render(view)
         {
           write_snapshot(all_keys, all_values, all_levels, width, scalar_fields, time, step);
         }
+      catch (const ExceptionBase &e)
+        {
+          // The message itself, without deal.II's frame (it is raised again below).
+          std::ostringstream message;
+          e.print_info(message);
+          failure = Utilities::trim(message.str());
+        }
       catch (const std::exception &e)
         {
           failure = e.what();
