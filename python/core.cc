@@ -206,9 +206,15 @@ namespace
     py::array_t<double> positions()
     {
       single_rank();
-      const Surface    &surface = sim().current_surface();
-      const FieldSpace &vectors = surface.vector_space();
-      const Vector     &D       = surface.displacement();
+      return vertex_vectors(sim().current_surface().displacement(), true);
+    }
+
+    /// A vector field (vector space) at every vertex (n_vertices x 3), plus the
+    /// reference position of the vertex if `add_reference`.
+    py::array_t<double> vertex_vectors(const Vector &v, const bool add_reference)
+    {
+      const Surface      &surface = sim().current_surface();
+      const FieldSpace   &vectors = surface.vector_space();
       py::array_t<double> out({n_vertices(), std::size_t(spacedim)});
       auto                x = out.mutable_unchecked<2>();
       std::vector<dealii::types::global_dof_index> dofs(vectors.fe().n_dofs_per_cell());
@@ -220,8 +226,8 @@ namespace
             for (unsigned int k = 0; k < dofs.size(); ++k)
               {
                 const auto [component, vertex] = vectors.fe().system_to_component_index(k);
-                const auto i                   = scalar_cell->vertex_dof_index(vertex, 0);
-                x(i, component)                = cell->vertex(vertex)[component] + D(dofs[k]);
+                x(scalar_cell->vertex_dof_index(vertex, 0), component) =
+                  (add_reference ? cell->vertex(vertex)[component] : 0.0) + v(dofs[k]);
               }
           }
       return out;
@@ -253,25 +259,7 @@ namespace
       single_rank();
       const Surface &surface = sim().current_surface();
       if (name == "normal" || name == "displacement")
-        {
-          const Vector &v = name == "normal" ? sim().current_geometry().normal : surface.displacement();
-          const FieldSpace &vectors = surface.vector_space();
-          py::array_t<double> out({n_vertices(), std::size_t(spacedim)});
-          auto                x = out.mutable_unchecked<2>();
-          std::vector<dealii::types::global_dof_index> dofs(vectors.fe().n_dofs_per_cell());
-          for (const auto &cell : sim().mesh().active_cell_iterators())
-            if (cell->is_locally_owned())
-              {
-                const auto scalar_cell = surface.scalar_space().cell(cell);
-                vectors.cell(cell)->get_dof_indices(dofs);
-                for (unsigned int k = 0; k < dofs.size(); ++k)
-                  {
-                    const auto [component, vertex] = vectors.fe().system_to_component_index(k);
-                    x(scalar_cell->vertex_dof_index(vertex, 0), component) = v(dofs[k]);
-                  }
-              }
-          return out;
-        }
+        return vertex_vectors(name == "normal" ? sim().current_geometry().normal : surface.displacement(), false);
       Vector areas;
       const Vector *v = nullptr;
       if (name == "phi")

@@ -2,6 +2,7 @@
 #include <membrane/physics/initial_phase.h>
 
 #include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/fe/fe_values.h>
 
 #include <cmath>
@@ -14,11 +15,9 @@ namespace Membrane
   std::vector<Tensor<1, spacedim>> parse_cap_axes(const std::string &text, const std::string &entry)
   {
     std::vector<Tensor<1, spacedim>> axes;
-    std::stringstream                all(text);
-    std::string                      item;
-    while (std::getline(all, item, ';'))
+    for (const std::string &item : Utilities::split_string_list(text, ';'))
       {
-        if (item.find_first_not_of(" \t") == std::string::npos)
+        if (item.empty())
           continue;
         std::istringstream  in(item);
         Tensor<1, spacedim> axis;

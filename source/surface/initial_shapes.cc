@@ -2,6 +2,7 @@
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/numbers.h>
+#include <deal.II/base/utilities.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <sstream>
@@ -32,11 +33,9 @@ namespace Membrane
   std::vector<CosineMode> parse_cosine_modes(const std::string &text, const std::string &entry)
   {
     std::vector<CosineMode> modes;
-    std::stringstream       all(text);
-    std::string             item;
-    while (std::getline(all, item, ';'))
+    for (const std::string &item : Utilities::split_string_list(text, ';'))
       {
-        if (item.find_first_not_of(" \t") == std::string::npos)
+        if (item.empty())
           continue;
         std::istringstream in(item);
         CosineMode         mode{0, 0, 0, 0};
