@@ -6,9 +6,6 @@ cd "$(dirname "$0")/.."
 ./scripts/install_dependencies.sh || exit 1
 ./scripts/build.sh || exit 1
 cd build
-# Single-rank runs start without an Open MPI daemon: quicker, and no daemon start-up
-# failures when many tests start processes at once on a busy machine.
-export OMPI_MCA_ess_singleton_isolated=1
 ctest -j "$(nproc)" --output-on-failure --timeout 600 | tee ctest.log
 status=${PIPESTATUS[0]}
 summary=$(grep -E "tests passed, [0-9]+ tests failed out of [0-9]+" ctest.log | tail -1)
