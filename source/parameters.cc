@@ -118,6 +118,12 @@ namespace Membrane
                         "Stop at equilibrium when |F^{m+1} - F^m| / (tau |F^m|) falls below this (1/time; 0: never).");
       prm.declare_entry("Minimum cell quality", "0.1", Patterns::Double(-1, 1),
                         "Smallest accepted sine of a cell's corner angle (1: rectangle; 0: degenerate).");
+      prm.declare_entry("Maximum increment", "1", Patterns::Double(0, max_double),
+                        "Largest displacement of a vertex in one step, in cell sizes of the input mesh (0: no "
+                        "bound). A step that moves the surface further is rejected: with Adaptive = true it is "
+                        "retried with a smaller tau; with a fixed tau the run stops, keeping its last good state, "
+                        "because the time step is too large for the dynamics (the adaptive control keeps moves "
+                        "below half a cell).");
       prm.leave_subsection();
 
       prm.enter_subsection("Shape");
@@ -269,6 +275,7 @@ namespace Membrane
     energy_tolerance = prm.get_double("Energy tolerance");
     equilibrium_rate = prm.get_double("Equilibrium rate");
     min_cell_quality = prm.get_double("Minimum cell quality");
+    max_increment_cells = prm.get_double("Maximum increment");
     AssertThrow(min_time_step <= time_step && time_step <= max_time_step,
                 ExcMessage("Entries <Time stepping/Time step>: need Minimum time step <= Time step <= Maximum time "
                            "step (got " + prm.get("Minimum time step") + ", " + prm.get("Time step") + ", " +

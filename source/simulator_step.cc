@@ -201,6 +201,12 @@ namespace Membrane
     if (parameters.evolve_shape && cell_quality < parameters.min_cell_quality)
       return restore("a cell degenerated (corner sine " + format(cell_quality) + " < " +
                      format(parameters.min_cell_quality) + ")");
+    // A CFL-like bound on the motion: a semi-implicit step is stable at any tau, so a
+    // tau far too large for the dynamics shows as a move of many cells, not as a blow-up.
+    const double moved_cells = max_increment / reference_cell_size();
+    if (parameters.evolve_shape && parameters.max_increment_cells > 0 && moved_cells > parameters.max_increment_cells)
+      return restore("a vertex would move " + format(moved_cells) + " cell sizes in one step (more than <Time "
+                     "stepping/Maximum increment> = " + format(parameters.max_increment_cells) + ")");
     const double rise = energy.total() - before.energy.total();
     if (rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
       return restore("the energy would rise by " + format(rise));

@@ -496,6 +496,32 @@ def errors_failed_run_message_after_timer_table():
 
 
 @check
+def steps_fixed_time_step_far_too_large():
+    # 7.3 on 16 x 16 cells: tau = 3 moves the surface 1.27 cells in its first step, which a
+    # semi-implicit step survives without any energy rise (it used to end with exit 0 and
+    # a wrong outcome). The bound <Time stepping/Maximum increment> stops it.
+    budding = os.path.join(ROOT, 'experiments', '7.3-budding.prm')
+    coarse = ['--quiet', '--set', 'Mesh/Cells per side=16', '--set', 'Output/Write VTU=false', '--set',
+              'Checkpoint/Interval=0', '--set', 'Time stepping/Maximum time step=3', '--set',
+              'Time stepping/Time step=3', '--set', 'Time stepping/End time=3']
+    d = fresh('tau-too-large')
+    expect(coarse + ['--set', 'Time stepping/Adaptive=false'] + out(d) + [budding], 2,
+           r'step failed at t = 0: a vertex would move 1\.[0-9]+ cell sizes in one step \(more than '
+           r'<Time stepping/Maximum increment> = 1\); reduce <Time stepping/Time step> or set Adaptive = true')
+    with open(os.path.join(d, 'summary.json')) as f:
+        summary = json.load(f)
+    require(summary['steps'] == 0 and summary['stop_reason'].startswith('step failed'),
+            f'summary.json: steps {summary["steps"]}, stop_reason {summary["stop_reason"]!r}')
+    # Adaptive steps: the same first step is rejected and retried with a smaller tau.
+    d = fresh('tau-too-large-adaptive')
+    code, output = run(coarse + ['--set', 'Time stepping/Maximum steps=1'] + out(d) + [budding])
+    require(code == 0, f'adaptive run: exit code {code}', output)
+    with open(os.path.join(d, 'summary.json')) as f:
+        summary = json.load(f)
+    require(summary['rejected_steps'] >= 1, f'adaptive run: {summary["rejected_steps"]} rejected steps', output)
+
+
+@check
 def errors_input_error_inside_the_run_is_last():
     expect(['--set', f'Checkpoint/Resume from={WORK}/nonexistent-checkpoint.txt'] + TINY
            + out(fresh('bad-checkpoint')) + [SMALL], 1, r'Error: .*Checkpoint/Resume from.*cannot open the checkpoint')
