@@ -50,10 +50,10 @@ def branch_section(studies):
     return ['## Both branches: continuation in sigma (32 x 32)\n',
             '```sh\nscripts/continuation.py follow experiments/7.3-budding.prm "Material/Line tension" '
             '2000 1500 1200 1000 900 800 700 600 \\\n    --classify protrusion:0.95 --max-time 3 '
-            '--output results/studies/branches-32/down --set "Output/Write VTU=false"\n'
+            '--output results/studies/branches-32/down --set "Output/Write VTU=false" \\\n    --set "Mesh/Maximum refinement level=0"\n'
             'scripts/continuation.py follow experiments/7.3-budding.prm "Material/Line tension" '
             '600 700 800 900 1000 1200 1500 2000 \\\n    --classify protrusion:0.95 --max-time 3 '
-            '--output results/studies/branches-32/up --set "Output/Write VTU=false"\n'
+            '--output results/studies/branches-32/up --set "Output/Write VTU=false" \\\n    --set "Mesh/Maximum refinement level=0"\n'
             'scripts/continuation.py compare results/studies/branches-32/down results/studies/branches-32/up\n```\n',
             'Each value relaxes from the previous one\'s equilibrium until the relative energy rate falls below '
             '1e-3 per unit time (or 3 time units pass); the classes are those of the protrusion threshold 0.95 '
@@ -124,9 +124,9 @@ if os.path.isdir(sensitivity):
               'The sigma = 1500 case (T_min from the sigma study above) repeated with a finer mesh and a',
               'smaller cap on tau:\n',
               '```sh\nmembrane-flow --set "Material/Line tension=1500" --set "Time stepping/End time=2.5" \\\n'
-              '    --set "Mesh/Cells per side=48" --set "Output/Directory=results/studies/sensitivity/n48" '
+              '    --set "Mesh/Cells per side=48" --set "Mesh/Maximum refinement level=0" \\\n    --set "Output/Directory=results/studies/sensitivity/n48" '
               'experiments/7.3-budding.prm\nmembrane-flow --set "Material/Line tension=1500" --set "Time stepping/End time=2.5" \\\n'
-              '    --set "Time stepping/Maximum time step=2.5e-3" '
+              '    --set "Time stepping/Maximum time step=2.5e-3" --set "Mesh/Maximum refinement level=0" \\\n    '
               '--set "Output/Directory=results/studies/sensitivity/tau2.5e-3" experiments/7.3-budding.prm\n```\n',
               '| variant | T_min | steps | stop reason |', '|---|---|---|---|']
     for variant, label in (('n48', '48 x 48 cells, tau <= 1e-2'), ('tau2.5e-3', '32 x 32 cells, tau <= 2.5e-3')):
@@ -155,7 +155,8 @@ if os.path.exists(bisection):
     lines += ['## Critical line tension of the 7.3 setup\n',
               '```sh\nscripts/critical_value.py experiments/7.3-budding.prm "Material/Line tension" 630 1000 \\\n'
               '    --tolerance 0.05 --geometric --output results/studies/critical-sigma \\\n'
-              '    --set "Time stepping/End time=2.5" --set "Output/Interval=0.5" --set "Checkpoint/Interval=0"\n```\n',
+              '    --set "Time stepping/End time=2.5" --set "Output/Interval=0.5" --set "Checkpoint/Interval=0" \\\n'
+              '    --set "Mesh/Maximum refinement level=0"\n```\n',
               f'The outcome changes from "{b["outcomes"][0]}" to "{b["outcomes"][1]}" between sigma = {low:.4g} and '
               f"{high:.4g} by t = 2.5 (paper: between 540 and 630). Every run of the bisection:\n",
               '| sigma | outcome |', '|---|---|'] + [f'| {x:.4g} | {o} |' for x, o in b['runs']]
@@ -165,8 +166,9 @@ lines += ['## Mesh convergence and local refinement\n',
           'bump). [mesh-convergence.md](mesh-convergence.md) runs the 7.3 setup at sigma = 630 and 1000 on uniform '
           '32, 48 and 64 meshes and with local refinement: one level at the interface (`Mesh/Maximum refinement '
           'level = 1`, 1.5 cells per xi) reproduces the uniform 64 x 64 energy within 0.1 % at about half of its CPU '
-          'time, while uniform 32 x 32 is 2.4 % (sigma = 630) and 6.2 % (sigma = 1000) above it. For results that '
-          'do not depend on the mesh, add `--set "Mesh/Maximum refinement level=1"` to the 7.3 and 7.4 inputs.\n']
+          'time, while uniform 32 x 32 is 2.4 % (sigma = 630) and 6.2 % (sigma = 1000) above it. The 7.3 and 7.4 '
+          'inputs therefore use this setting by default; the studies above set `Mesh/Maximum refinement level = 0` '
+          '(in their commands and in `experiments/studies/*.json`) and are results of the uniform 32 x 32 mesh.\n']
 adaptive = os.path.join(studies, 'critical-sigma-adaptive', 'bisection.json')
 if os.path.exists(adaptive):
     with open(adaptive) as f:

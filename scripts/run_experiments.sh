@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every experiment of the paper (experiments/7*.prm, plus 7.4 C and D at sigma = 1000)
 # at full length into results/, then regenerates docs/experiments.md and its pictures.
-# About 15 minutes on 2 cores. Usage: scripts/run_experiments.sh [membrane-flow]
+# About 25-30 minutes on 2 cores (the budding runs refine the mesh locally). Usage: scripts/run_experiments.sh [membrane-flow]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 exe=${1:-build/membrane-flow}
