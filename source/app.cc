@@ -1,4 +1,5 @@
 #include <membrane/app.h>
+#include <membrane/io/memory.h>
 #include <membrane/io/run_directory.h>
 #include <membrane/io/stop_signal.h>
 #include <membrane/parameters.h>
@@ -104,7 +105,7 @@ namespace Membrane
           else if (a == "--overwrite")
             line.overwrite = true;
           else if (a == "--no-memory-check")
-            line.check_memory = false;
+            line.check_memory = line.options.check_memory = false;
           else if (a == "--set")
             {
               if (i + 1 >= args.size())
@@ -128,68 +129,30 @@ namespace Membrane
       return line;
     }
 
-    std::string format_bytes(const double bytes)
-    {
-      std::ostringstream out;
-      out << std::fixed << std::setprecision(1);
-      if (bytes >= 1e12)
-        out << bytes / 1e12 << " TB";
-      else if (bytes >= 1e9)
-        out << bytes / 1e9 << " GB";
-      else
-        out << bytes / 1e6 << " MB";
-      return out.str();
-    }
-
-    /// MemAvailable of /proc/meminfo in bytes (negative if unknown).
-    double mem_available()
-    {
-      std::ifstream meminfo("/proc/meminfo");
-      std::string   key, unit;
-      double        value;
-      while (meminfo >> key >> value)
-        {
-          std::getline(meminfo, unit);
-          if (key == "MemAvailable:")
-            return value * 1024; // kB
-        }
-      return -1;
-    }
-
-    /// The memory available to the run: MemAvailable summed over the distinct hosts of
-    /// the ranks (negative if unknown on any). Collective; every rank gets the same value.
-    double available_memory(const MPI_Comm communicator)
-    {
-      char host[256] = {};
-      ::gethostname(host, sizeof host - 1);
-      std::ostringstream mine;
-      mine << std::setprecision(17) << mem_available() << ' ' << host;
-      std::map<std::string, double> per_host;
-      for (const std::string &entry : Utilities::MPI::all_gather(communicator, mine.str()))
-        {
-          std::istringstream in(entry);
-          double             bytes = -1;
-          std::string        name;
-          in >> bytes;
-          std::getline(in, name);
-          if (!(bytes >= 0))
-            return -1;
-          per_host[name] = bytes;
-        }
-      double total = 0;
-      for (const auto &[name, bytes] : per_host)
-        total += bytes;
-      return total;
-    }
-
     /// Refuse a mesh far too large for the machine(s), before anything is allocated.
     void check_memory(const Parameters &parameters, const MPI_Comm communicator)
     {
       const unsigned int   ranks     = Utilities::MPI::n_mpi_processes(communicator);
       const double         available = available_memory(communicator);
       const MemoryEstimate estimate  = estimate_memory(parameters, ranks);
-      if (available < 0 || estimate.bytes <= available)
+      if (available < 0)
         return;
+      if (estimate.bytes <= available)
+        {
+          // Local refinement: the mesh refined everywhere is the worst case. The run
+          // refines only where the indicators ask, and refuses a refinement that would
+          // not fit (Simulator::adapt_mesh), so this is a note, not a refusal.
+          const unsigned int level = parameters.adaptivity.max_level;
+          const double       everywhere =
+            level > 0 && level < 16 ? estimate_memory(parameters, ranks, parameters.cells_per_side << level).bytes : 0;
+          if (everywhere > available && Utilities::MPI::this_mpi_process(communicator) == 0)
+            std::cout << "Note: <Mesh/Maximum refinement level> = " << level << ": refined everywhere, the mesh would "
+                      << "need an estimated " << format_bytes(everywhere) << " of memory, and "
+                      << format_bytes(available) << " is available. The run refines only where the interface and "
+                      << "the curvature ask for it, and does not refine further when a refinement would not fit in "
+                      << "the available memory (it says so)." << std::endl;
+          return;
+        }
       unsigned int fits = 0;
       for (unsigned int n = 2; n <= parameters.cells_per_side; ++n)
         if (estimate_memory(parameters, ranks, n).bytes <= available)

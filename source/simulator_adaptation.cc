@@ -1,6 +1,7 @@
 // Mesh adaptation of a run (MODEL.md section 9): marking, transfer of the state to
 // the new mesh, and what must survive it exactly. Part of Simulator.
 #include <membrane/simulator.h>
+#include <membrane/io/memory.h>
 #include <membrane/surface/grid_control.h>
 
 #include <deal.II/distributed/solution_transfer.h>
@@ -120,12 +121,44 @@ namespace Membrane
     return Utilities::MPI::max(local, communicator) - base_level;
   }
 
+  bool Simulator::refinement_fits(const unsigned int n_refine)
+  {
+    if (n_refine == 0 || (!options.check_memory && parameters.adaptivity.memory_limit <= 0))
+      return true;
+    // The memory of a run grows about in proportion to its cells (matrices, LU factors,
+    // vectors); a refined cell becomes four. Scale what the ranks use now, less a
+    // process's own fixed part (libraries, MPI; as in estimate_memory()).
+    const double fixed_part = 200e6;
+    const double resident   = Utilities::MPI::sum(std::max(resident_memory(), 0.0), communicator);
+    const double variable   = Utilities::MPI::sum(std::max(resident_memory() - fixed_part, 0.0), communicator);
+    const double growth     = variable * 3.0 * n_refine / triangulation.n_global_active_cells();
+    const double limit      = parameters.adaptivity.memory_limit;
+    const double available  = limit > 0 ? limit - resident : available_memory(communicator);
+    if ((limit <= 0 && available < 0) || growth <= (limit > 0 ? 1.0 : 0.8) * available)
+      return true;
+    if (!memory_warning_given)
+      pcout << "Warning: at t = " << time << " refining " << n_refine << " cells would need about "
+            << format_bytes(growth) << " more memory, and only " << format_bytes(std::max(available, 0.0))
+            << (limit > 0 ? " is left below <Mesh/Refinement memory limit>" : " is available (MemAvailable in /proc/meminfo)")
+            << ". The mesh is not refined further while that holds "
+            << "(coarsening goes on); the results are those of a coarser mesh than <Mesh/Maximum refinement level> "
+            << "asks for. Run on more machines with mpirun, lower the level, raise the limit, or skip this check with "
+            << "--no-memory-check.\n";
+    memory_warning_given = true;
+    return false;
+  }
+
   bool Simulator::adapt_mesh()
   {
     TimerOutput::Scope scope(timer, "mesh adaptation");
-    const auto [n_refine, n_coarsen] = mark_cells(triangulation, surface, geometry, phi,
-                                                  parameters.material.transition_length, parameters.adaptivity,
-                                                  base_level);
+    auto [n_refine, n_coarsen] = mark_cells(triangulation, surface, geometry, phi,
+                                            parameters.material.transition_length, parameters.adaptivity, base_level);
+    if (!refinement_fits(n_refine))
+      {
+        for (const auto &cell : triangulation.active_cell_iterators())
+          cell->clear_refine_flag();
+        n_refine = 0;
+      }
     if (n_refine + n_coarsen == 0)
       return false;
     const unsigned int cells_before  = triangulation.n_global_active_cells();
@@ -207,7 +240,7 @@ namespace Membrane
                                                       parameters.material.transition_length,
                                                       parameters.adaptivity, base_level);
         (void)n_coarsen;
-        if (n_refine == 0)
+        if (n_refine == 0 || !refinement_fits(n_refine))
           break;
         for (const auto &cell : triangulation.active_cell_iterators())
           cell->clear_coarsen_flag(); // the initial mesh only grows

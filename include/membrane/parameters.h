@@ -114,7 +114,8 @@ namespace Membrane
   /// With GMRES: 1.5 * 24 kB per vertex (8 kB without the shape system) + 200 MB per rank.
   /// The factor 1.5 is the safety factor; measured peaks are 77-90 % of the estimate
   /// (32 to 256 cells per side, one rank). The estimate is for the input mesh: local
-  /// refinement (Maximum refinement level > 0) adds to it.
+  /// refinement (Maximum refinement level > 0) adds to it; Simulator::refinement_fits()
+  /// checks each refinement against the memory the run uses.
   struct MemoryEstimate
   {
     double vertices = 0;

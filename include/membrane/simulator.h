@@ -45,6 +45,7 @@ namespace Membrane
     bool        quiet = false;
     std::string parameter_text; ///< the full parameter set, written next to the results
     std::string command_line;
+    bool        check_memory = true; ///< refuse a local refinement that would not fit in the available memory
   };
 
   struct RunResult
@@ -124,6 +125,9 @@ namespace Membrane
     /// Mesh adaptation (simulator_adaptation.cc): mark, transfer the state, set up the
     /// solvers on the new mesh; false if no cell was flagged.
     bool      adapt_mesh();
+    /// false (and a warning, once) when refining n_refine cells would not fit in the
+    /// available memory; collective.
+    bool      refinement_fits(unsigned int n_refine);
     /// Refine the initial mesh where the initial state asks for it (up to the maximum
     /// level), setting the initial state anew on each mesh.
     void      adapt_initial_mesh();
@@ -197,6 +201,7 @@ namespace Membrane
     /// sum of their energy changes (not steps of the gradient flow).
     unsigned int base_level = 0, adaptations = 0;
     double       adaptation_energy_jump = 0;
+    bool         memory_warning_given   = false; ///< refinement_fits() warns once per run
     bool   grid_move_skipped = false; ///< in the current trial step
 
     Statistics                         stats;

@@ -25,6 +25,10 @@ namespace Membrane
     prm.declare_entry("Curvature resolution", "0.3", Patterns::Double(0.01, 10),
                       "Cells are refined until h |kappa_max| <= this (h: cell size on the surface, kappa_max: the "
                       "largest principal curvature at its vertices), so that bud caps and necks are resolved.");
+    prm.declare_entry("Refinement memory limit", "0", Patterns::Double(0, 1e9),
+                      "GB: local refinement stops (the mesh is not refined further, with a warning) when the "
+                      "memory of all ranks would exceed this after refining. 0: 80 % of the memory available at "
+                      "the time (MemAvailable of /proc/meminfo, summed over the hosts of the ranks).");
     prm.declare_entry("Smooth new vertices", "true", Patterns::Bool(),
                       "Place the vertices created by refinement on a smooth surface through the old vertices and "
                       "their normals (cubic Hermite edges) instead of on the bilinear surface, whose kinks along the "
@@ -40,6 +44,7 @@ namespace Membrane
     options.interface_phi          = prm.get_double("Interface phi");
     options.curvature_resolution   = prm.get_double("Curvature resolution");
     options.smooth_new_vertices    = prm.get_bool("Smooth new vertices");
+    options.memory_limit           = prm.get_double("Refinement memory limit") * 1e9;
     return options;
   }
 } // namespace Membrane

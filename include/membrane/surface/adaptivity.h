@@ -25,6 +25,7 @@ namespace Membrane
     double       interface_phi          = 0.9; ///< |phi| below this at a vertex marks the interface
     double       curvature_resolution   = 0.3; ///< target h |kappa_max| <= this
     bool         smooth_new_vertices    = true; ///< new vertices on a smooth (Hermite) surface
+    double       memory_limit           = 0;    ///< bytes of all ranks after a refinement (0: 80 % of available)
 
     bool enabled() const { return max_level > 0; }
   };
