@@ -6,8 +6,9 @@ file), reads the run's wall-time table and statistics, and prints: total wall
 time, accepted and rejected steps, and milliseconds per accepted step for
 assembly, solves, grid control, geometry and the rest.
 
-Usage: time_experiment.py <membrane-flow> <input.prm> [output-dir]
-Example: benchmarks/time_experiment.py build/membrane-flow experiments/7.3-budding.prm
+Usage: time_experiment.py <membrane-flow> <input.prm> [output-dir] [--set 'Section/Entry=value' ...]
+Example: benchmarks/time_experiment.py build/membrane-flow experiments/7.3-budding.prm results/benchmark \
+             --set "Mesh/Maximum refinement level=0"
 """
 import json
 import re
@@ -15,8 +16,9 @@ import subprocess
 import sys
 
 exe, prm = sys.argv[1], sys.argv[2]
-out = sys.argv[3] if len(sys.argv) > 3 else "results/benchmark"
-log = subprocess.run([exe, "--set", "Output/Write VTU=false", "--set", f"Output/Directory={out}", prm],
+extra = sys.argv[3:]
+out = extra.pop(0) if extra and not extra[0].startswith("--") else "results/benchmark"
+log = subprocess.run([exe, "--overwrite", "--set", "Output/Write VTU=false", "--set", f"Output/Directory={out}", *extra, prm],
                      check=True, capture_output=True, text=True).stdout
 sections = {}
 for line in log.splitlines():
