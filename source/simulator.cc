@@ -282,7 +282,7 @@ namespace Membrane
     previous_increment  = step_increment;
     previous_phi_change = step_phi_change;
     previous_tau        = trial;
-    if (parameters.adaptivity.enabled() && step % parameters.adaptivity.interval == 0 && adapt_mesh())
+    if (adaptation_due() && adapt_mesh())
       previous_tau = 0; // the increments live on the old mesh
 
     const bool output_due = time >= next_output_time * (1 - 1e-12);

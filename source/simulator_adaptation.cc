@@ -2,6 +2,7 @@
 // the new mesh, and what must survive it exactly. Part of Simulator.
 #include <membrane/simulator.h>
 #include <membrane/io/memory.h>
+#include <membrane/surface/adaptivity.h>
 #include <membrane/surface/grid_control.h>
 
 #include <deal.II/distributed/solution_transfer.h>
@@ -146,6 +147,21 @@ namespace Membrane
             << "--no-memory-check.\n";
     memory_warning_given = true;
     return false;
+  }
+
+  bool Simulator::adaptation_due() const
+  {
+    const AdaptivityOptions &adaptivity = parameters.adaptivity;
+    if (!adaptivity.enabled())
+      return false;
+    if (step % adaptivity.interval == 0)
+      return true;
+    // Between the scheduled adaptations: as soon as the interface or a strongly curved
+    // region (a neck, a bud cap) moves into cells coarser than the indicators ask for.
+    // Not while refinement is held back for lack of memory (it would retry every step).
+    TimerOutput::Scope scope(timer, "mesh adaptation");
+    return !memory_warning_given && leaves_resolved_band(triangulation, surface, geometry, phi,
+                                                         parameters.material.transition_length, adaptivity, base_level);
   }
 
   bool Simulator::adapt_mesh()

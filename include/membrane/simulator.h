@@ -124,6 +124,9 @@ namespace Membrane
     Vector    area_defect() const;
     /// Mesh adaptation (simulator_adaptation.cc): mark, transfer the state, set up the
     /// solvers on the new mesh; false if no cell was flagged.
+    /// Every Adaptivity interval accepted steps, and whenever the interface or the
+    /// curvature leaves the refined band (leaves_resolved_band()); collective.
+    bool      adaptation_due() const;
     bool      adapt_mesh();
     /// false (and a warning, once) when refining n_refine cells would not fit in the
     /// available memory; collective.

@@ -16,7 +16,9 @@ namespace Membrane
                       "the interface or the curvature need them; cells are coarsened back to the input mesh "
                       "where neither does. 0: a uniform mesh that never changes.");
     prm.declare_entry("Adaptivity interval", "10", Patterns::Integer(1, 100000),
-                      "Accepted steps between mesh adaptations (with Maximum refinement level > 0).");
+                      "Accepted steps between scheduled mesh adaptations (with Maximum refinement level > 0); the mesh "
+                      "also adapts after any step at which the interface or a strongly curved region has moved into "
+                      "cells coarser than the indicators ask for.");
     prm.declare_entry("Interface cells per xi", "1.5", Patterns::Double(0.25, 16),
                       "Cells holding the diffuse interface (a vertex with |phi| < Interface phi) are refined until "
                       "their size on the surface is at most xi / this (the interface's 10-90 % width is 2.9 xi).");
@@ -74,7 +76,44 @@ namespace Membrane
         }
       return low < 0 && high > 0; // a sharp interface inside the cell
     }
+
+    /// max |kappa_1|, |kappa_2| = |H|/2 + sqrt(H^2/4 - K) over the vertices of a cell.
+    double largest_principal_curvature(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
+                                       const Geometry &geometry)
+    {
+      const auto scalar_cell = scalars.cell(cell);
+      double     kappa_max   = 0;
+      for (const unsigned int v : cell->vertex_indices())
+        {
+          const auto   dof = scalar_cell->vertex_dof_index(v, 0);
+          const double H = geometry.mean_curvature[dof], K = geometry.gauss_curvature[dof];
+          kappa_max      = std::max(kappa_max, 0.5 * std::abs(H) + std::sqrt(std::max(0.0, 0.25 * H * H - K)));
+        }
+      return kappa_max;
+    }
   } // namespace
+
+  bool leaves_resolved_band(const Triangulation &triangulation, const Surface &surface, const Geometry &geometry,
+                            const Vector &phi, const double xi, const AdaptivityOptions &options,
+                            const unsigned int base_level)
+  {
+    const FieldSpace &scalars = surface.scalar_space();
+    const double      target  = xi / options.interface_cells_per_xi;
+    bool              leaves  = false;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && cell->level() - base_level < options.max_level)
+        {
+          const bool interface = holds_interface(scalars, cell, phi, options.interface_phi);
+          const double h       = cell_size(surface, cell);
+          if ((interface && h > target) ||
+              h * largest_principal_curvature(scalars, cell, geometry) > 2 * options.curvature_resolution)
+            {
+              leaves = true;
+              break;
+            }
+        }
+    return Utilities::MPI::logical_or(leaves, triangulation.get_communicator());
+  }
 
   double interface_cell_size(const Surface &surface, const Vector &phi, const double interface_phi)
   {
@@ -114,14 +153,9 @@ namespace Membrane
         {
           const auto scalar_cell = scalars.cell(cell);
           bool       in_band     = false;
-          double     kappa_max   = 0;
           for (const unsigned int v : cell->vertex_indices())
-            {
-              const auto   dof = scalar_cell->vertex_dof_index(v, 0);
-              const double H = geometry.mean_curvature[dof], K = geometry.gauss_curvature[dof];
-              in_band          = in_band || band_ghosted[dof] > 0;
-              kappa_max        = std::max(kappa_max, 0.5 * std::abs(H) + std::sqrt(std::max(0.0, 0.25 * H * H - K)));
-            }
+            in_band = in_band || band_ghosted[scalar_cell->vertex_dof_index(v, 0)] > 0;
+          const double kappa_max = largest_principal_curvature(scalars, cell, geometry);
           const double       h     = cell_size(surface, cell);
           const unsigned int level = cell->level() - base_level;
           const bool refine_here = (in_band && h > target) || h * kappa_max > options.curvature_resolution;

@@ -52,4 +52,13 @@ namespace Membrane
                                                    const Geometry &geometry, const Vector &phi_ghosted,
                                                    double transition_length, const AdaptivityOptions &options,
                                                    unsigned int base_level);
+
+  /// True (on every rank) when the mesh no longer resolves what mark_cells() refines for,
+  /// between two scheduled adaptations: a cell below the maximum level holds the
+  /// interface and is coarser than the interface target, or bends by more than twice the
+  /// curvature resolution (a neck or cap has moved into coarse cells). Cheap: one pass
+  /// over the cells.
+  bool leaves_resolved_band(const Triangulation &triangulation, const Surface &surface, const Geometry &geometry,
+                            const Vector &phi_ghosted, double transition_length, const AdaptivityOptions &options,
+                            unsigned int base_level);
 } // namespace Membrane
