@@ -206,7 +206,8 @@ namespace Membrane
     const double moved_cells = max_increment / reference_cell_size();
     if (parameters.evolve_shape && parameters.max_increment_cells > 0 && moved_cells > parameters.max_increment_cells)
       return restore("a vertex would move " + format(moved_cells) + " cell sizes in one step (more than <Time "
-                     "stepping/Maximum increment> = " + format(parameters.max_increment_cells) + ")");
+                     "stepping/Maximum increment> = " + format(parameters.max_increment_cells) +
+                     "; 0 there: no bound)");
     const double rise = energy.total() - before.energy.total();
     if (rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
       return restore("the energy would rise by " + format(rise));
