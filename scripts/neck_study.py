@@ -26,7 +26,7 @@ import argparse
 import json
 import os
 import re
-import shlex
+import signal
 import subprocess
 import sys
 
@@ -141,12 +141,15 @@ def run_case(case, exe, timeout):
     cmd = ['/usr/bin/time', '-v'] + case.command(exe)
     print('running', case.name, flush=True)
     with open(case.log, 'w') as log:
+        p = subprocess.Popen(cmd, cwd=ROOT, env={**os.environ, **ENV}, stdout=log,
+                             stderr=subprocess.STDOUT, start_new_session=True)
         try:
-            p = subprocess.run(cmd, cwd=ROOT, env={**os.environ, **ENV}, stdout=log,
-                               stderr=subprocess.STDOUT, timeout=timeout)
-            code = p.returncode
+            code = p.wait(timeout=timeout)
         except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGTERM)  # the run's own process group: time and the solver
+            p.wait()
             code = 'timeout'
+        log.flush()
         log.write(f'exit {code}\n')
     print(f'  {case.name}: exit {code}', flush=True)
 
