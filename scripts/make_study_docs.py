@@ -161,6 +161,9 @@ if os.path.exists(bisection):
               f"{high:.4g} by t = 2.5 (paper: between 540 and 630). Every run of the bisection:\n",
               '| sigma | outcome |', '|---|---|'] + [f'| {x:.4g} | {o} |' for x, o in b['runs']]
 lines += branch_section(studies)
+sys.path.insert(0, HERE)
+from membrane_workflow.threshold_time import section as threshold_section  # noqa: E402
+lines += threshold_section(studies)
 lines += ['## Mesh convergence and local refinement\n',
           'The uniform 32 x 32 mesh of the paper under-resolves the interface (xi = 0.03, 1.8 cells per xi on the '
           'bump). [mesh-convergence.md](mesh-convergence.md) runs the 7.3 setup at sigma = 630 and 1000 on uniform '

@@ -20,6 +20,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, '..', 'scripts'))
 from membrane_workflow.budding_time import budding_time  # noqa: E402
 from membrane_workflow.critical import bisect  # noqa: E402
+from membrane_workflow.threshold_time import brackets, first_crossing  # noqa: E402
 
 EXE = sys.argv[1] if len(sys.argv) > 1 else None
 SMALL = sys.argv[2] if len(sys.argv) > 2 else None
@@ -84,6 +85,29 @@ class Bisection(unittest.TestCase):
     def test_no_change_is_an_error(self):
         with self.assertRaisesRegex(ValueError, 'no change of outcome'):
             bisect(lambda x: 'flat', 1.0, 2.0, 0.1)
+
+
+class ThresholdAgainstEndTime(unittest.TestCase):
+    def test_first_crossing_interpolates(self):
+        t = np.array([0.0, 1.0, 2.0, 3.0])
+        self.assertAlmostEqual(first_crossing(t, np.array([0.5, 0.8, 1.0, 1.1])), 1.75)
+        self.assertEqual(first_crossing(t, np.array([0.5, 0.6, 0.7, 0.9])), math.inf)
+
+    def test_brackets_of_a_known_law(self):
+        # Crossing time T(sigma) = 100 / (sigma - 800): the threshold for end time T is
+        # 800 + 100 / T, i.e. 840 (T = 2.5), 820 (5), 810 (10).
+        sigmas = [805, 815, 825, 835, 845, 900]
+        runs = [(s, 100.0 / (s - 800), 10.0) for s in sigmas]
+        found = brackets(runs, (2.5, 5, 10))
+        self.assertEqual(found[2.5], (835, 845, []))
+        self.assertEqual(found[5], (815, 825, []))
+        self.assertEqual(found[10], (805, 815, []))
+
+    def test_a_run_that_stopped_early_is_undecided_later(self):
+        runs = [(800, math.inf, 10.0), (850, math.inf, 4.0), (900, 3.0, 10.0)]
+        found = brackets(runs, (2.5, 5))
+        self.assertEqual(found[2.5], (900, None, []))  # none has crossed by 2.5
+        self.assertEqual(found[5], (800, 900, [850]))
 
 
 @unittest.skipIf(EXE is None, 'needs the membrane-flow executable and small.prm')

@@ -1,0 +1,83 @@
+"""The flat-start budding threshold as a function of the end time.
+
+A flat start of the 7.3 setup protrudes like a sphere of its domain area
+(domain_protrusion >= 0.95) at a time that grows without bound as sigma falls towards the
+threshold. One run per sigma, long enough (to T_max), gives the threshold for every end time
+T <= T_max at once: the runs that have crossed by T lie above it, the others below.
+
+brackets() is pure (tested in tests/test_workflow.py); section() reads a sweep's case
+directories and writes the part of docs/studies.md."""
+import json
+import math
+import os
+
+from .statistics import load_statistics, load_summary
+
+THRESHOLD = 0.95
+
+
+def first_crossing(times, protrusion, threshold=THRESHOLD):
+    """First time at which protrusion >= threshold (linear between rows); inf if never."""
+    for i, (t, p) in enumerate(zip(times, protrusion)):
+        if p >= threshold:
+            if i == 0:
+                return float(t)
+            t0, p0 = times[i - 1], protrusion[i - 1]
+            return float(t0 + (t - t0) * (threshold - p0) / (p - p0))
+    return math.inf
+
+
+def brackets(runs, end_times):
+    """runs: [(sigma, crossing time, time the run reached)]. For each end time T:
+    (largest sigma not crossed by T, smallest sigma crossed by T, undecided sigmas), where a
+    run that stopped before T without crossing is undecided at T."""
+    result = {}
+    for T in end_times:
+        below = [s for s, c, reached in runs if c > T and reached >= T * (1 - 1e-9)]
+        above = [s for s, c, reached in runs if c <= T]
+        undecided = [s for s, c, reached in runs if c > T and reached < T * (1 - 1e-9)]
+        low = max((s for s in below if not above or s < min(above)), default=None)
+        result[T] = (low, min(above) if above else None, sorted(undecided))
+    return result
+
+
+def section(studies, end_times=(2.5, 5, 10)):
+    """Lines of docs/studies.md for results/studies/threshold-time (empty without results)."""
+    cases = os.path.join(studies, 'threshold-time', 'cases')
+    if not os.path.isdir(cases):
+        return []
+    runs, rows = [], []
+    for name in sorted(os.listdir(cases)):
+        run = os.path.join(cases, name)
+        if not os.path.exists(os.path.join(run, 'summary.json')):
+            continue
+        with open(os.path.join(run, 'case.json')) as f:
+            sigma = float(json.load(f)['vary']['Material/Line tension'])
+        stats, summary = load_statistics(run), load_summary(run)
+        crossing = first_crossing(stats['time'], stats['domain_protrusion'])
+        runs.append((sigma, crossing, float(summary['time'])))
+        rows.append((sigma, crossing, summary))
+    if not runs:
+        return []
+    rows.sort(key=lambda r: r[0])
+    table = ['| sigma | protrusion reaches 0.95 at t | run ended at t | stop reason | final protrusion | neck ratio |',
+             '|---|---|---|---|---|---|']
+    for sigma, crossing, s in rows:
+        table.append(f"| {sigma:g} | {'never' if math.isinf(crossing) else f'{crossing:.2f}'} | {s['time']:.2f} | "
+                     f"{s['stop_reason'].split(':')[0]} | {s['domain_protrusion']:.2f} | {s['neck_ratio']:.2f} |")
+    found = brackets(runs, end_times)
+    summary_lines = []
+    for T in end_times:
+        low, high, undecided = found[T]
+        text = (f'between {low:g} and {high:g}' if low is not None and high is not None else
+                f'above {low:g}' if low is not None else f'below {high:g}' if high is not None else 'not bracketed')
+        if undecided:
+            text += f" (undecided: {', '.join(f'{s:g}' for s in undecided)}, whose runs stopped earlier)"
+        summary_lines.append(f'- by t = {T:g}: {text}')
+    return ['## The flat-start threshold against the end time (32 x 32)\n',
+            '```sh\nscripts/sweep.py experiments/studies/threshold-time.json --workers 2\n```\n',
+            'Flat starts of the 7.3 setup on the uniform 32 x 32 mesh, run to t = 10. The time at which the domain '
+            'first protrudes like a sphere of its area (protrusion 0.95, the threshold of the brackets above) grows '
+            'as sigma falls, so the flat-start threshold depends on how long one waits:\n'] + summary_lines + [
+            '\nA run that stops before t = 10 ("stalled": the step control cannot lower the energy any more near '
+            'equilibrium) leaves its sigma undecided for later end times. Every run:\n'] + table + ['']
