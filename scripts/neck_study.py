@@ -37,7 +37,7 @@ ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
 sys.path.insert(0, os.path.join(ROOT, 'scripts'))
 from membrane_workflow.statistics import load_statistics, load_summary  # noqa: E402
 
-EXE = '/work/study-bin/membrane-flow-neck'
+EXE = 'build/membrane-flow'
 BASE = 'experiments/7.3-budding.prm'
 OUTPUT = 'results/studies/neck'
 DOC = 'docs/neck-resolution.md'
@@ -405,6 +405,17 @@ def report(cases, exe):
             L.append('**The factor 2 is not reached.** ' + (
                 f"The largest ratio is {best[0]:.2f} ({best[1]} against {best[2]}; {best[3]})"
                 + ('' if best[4] else ', and that refined run forms no neck') + '.' if best else ''))
+            L.append('')
+            for u in uniforms:
+                ref = u['min_neck'][0] if u['min_neck'] else u['min_any'][0]
+                ads = [a for a in adaptives if a['case'].sigma == u['case'].sigma]
+                if not ads:
+                    continue
+                L.append(f"- sigma {fmt(u['case'].sigma)}: half of {u['case'].name}'s {ref:.4f} is {ref / 2:.4f}"
+                         f"{' (below the pinch-off radius ' + fmt(PINCH_RADIUS) + ')' if ref / 2 < PINCH_RADIUS else ''}; "
+                         + '; '.join(f"{a['case'].name} ends at neck_radius {a['radius'][-1]:.4f} "
+                                     f"(t = {a['time'][-1]:.3f}, {a['summary']['rejected_steps']} rejected steps)"
+                                     for a in ads) + '.')
         L.append('')
     elif uniforms:
         L.append('No refined case has finished; no comparison.')
@@ -468,7 +479,8 @@ def main():
     args = p.parse_args()
     os.chdir(ROOT)
     if args.dry_run:
-        plan(args, execute=False)
+        if all(c.finished for c in plan(args, execute=False)):
+            print('# every case has a summary.json; nothing to run')
         return
     cases = plan(args, execute=not args.report_only)
     report(cases, args.exe)
