@@ -295,9 +295,9 @@ def report(cases, exe):
     L.append('scripts/neck_study.py')
     L.append('```')
     L.append('')
-    L.append('Commands (from the repository root):')
+    L.append('The runs it makes (from the repository root):')
     L.append('')
-    L.append('```sh')
+    L.append('```text')
     for a in results:
         L.append(a['case'].shell(exe))
     L.append('```')
