@@ -74,6 +74,18 @@ def section(studies, end_times=(2.5, 5, 10)):
         if undecided:
             text += f" (undecided: {', '.join(f'{s:g}' for s in undecided)}, whose runs stopped earlier)"
         summary_lines.append(f'- by t = {T:g}: {text}')
+    last, previous = end_times[-1], end_times[-2] if len(end_times) > 1 else None
+    if previous is not None and found[last][:2] == found[previous][:2] and found[last][0] is not None:
+        never = [(s['domain_protrusion'], sigma) for sigma, crossing, s in rows if math.isinf(crossing)]
+        top = max(never) if never else None
+        summary_lines.append(
+            f'\nThe bracket no longer moves between t = {previous:g} and t = {last:g}'
+            + (f': below it the protrusion levels off under 0.95 ({top[0]:.2f} at sigma = {top[1]:g} by '
+               f't = {last:g}), so it brackets the long-time state, not a transient. The final protrusions rise '
+               'steadily with sigma (' + ', '.join(f"{s['domain_protrusion']:.2f}" for _, _, s in rows) +
+               f' from sigma = {rows[0][0]:g} to {rows[-1][0]:g}), with no jump at this spacing: on this mesh the '
+               '0.95 line is crossed by a continuous family of protruding states, none with a neck.'
+               if top else '.'))
     return ['## The flat-start threshold against the end time (32 x 32)\n',
             '```sh\nscripts/sweep.py experiments/studies/threshold-time.json --workers 2\n```\n',
             'Flat starts of the 7.3 setup on the uniform 32 x 32 mesh, run to t = 10. The time at which the domain '
