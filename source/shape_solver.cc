@@ -4,6 +4,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <array>
 #include <optional>
 
 namespace Membrane
@@ -15,6 +16,20 @@ namespace Membrane
     constexpr unsigned int pressure_component = 3, curvature_component = 4, first_tangent_component = 5;
     /// Fixes the constant pressure where H = 0 (see the header); dimensionless.
     constexpr double pressure_regularization = 1e-12;
+
+    /// An orthonormal basis of the plane normal to nu (a vertex normal), a function of nu
+    /// alone, so that every cell at a vertex uses the same one. It follows the projection
+    /// of the z axis, which turns smoothly from vertex to vertex (a hanging vertex and its
+    /// parents get nearly the same frame), and that of the x axis near the poles.
+    std::array<Tensor<1, spacedim>, 2> tangent_frame(const Tensor<1, spacedim> &nu_in)
+    {
+      const Tensor<1, spacedim> nu = nu_in / nu_in.norm();
+      Tensor<1, spacedim>       e;
+      e[std::abs(nu[2]) < 0.9 ? 2 : 0] = 1;
+      Tensor<1, spacedim> t            = e - (e * nu) * nu;
+      t /= t.norm();
+      return {{t, cross_product_3d(nu, t)}};
+    }
 
     /// Frozen data of Gamma^m at one quadrature point.
     struct PointData
@@ -57,6 +72,13 @@ namespace Membrane
     std::vector<Tensor<1, spacedim>> grad_phi_q(n_q), nu_q(n_q);
     std::vector<Tensor<2, spacedim>> grad_nu_q(n_q);
     std::vector<PointData>           data(n_q);
+    // Tangent frames at the cell's vertices (closed surfaces, see below).
+    const FieldSpace &vectors = surface.vector_space();
+    dealii::Vector<double>           normal_dofs(vectors.fe().n_dofs_per_cell());
+    std::vector<std::array<Tensor<1, spacedim>, 2>> vertex_frame(GeometryInfo<dim>::vertices_per_cell);
+    std::vector<unsigned int>        vertex_of(n_dofs);
+    for (unsigned int i = 0; i < n_dofs; ++i)
+      vertex_of[i] = space.fe().system_to_component_index(i).second;
     std::vector<unsigned int>        component(n_dofs);
     std::vector<double>              value(n_dofs);
     std::vector<Tensor<1, spacedim>> gradient(n_dofs);
@@ -70,6 +92,19 @@ namespace Membrane
     const double tauL  = tau * material.shape_mobility;
     const double delta = options.pressure_stabilization;
 
+    // The tangential law is tested, and the tangential part B~ of the curvature vector
+    // expanded, along two tangent directions per vertex. On the periodic patch these are
+    // the parameter directions a_k of the cell, the same in every cell. On a closed
+    // mesh the cells' parameter axes turn from one cube face to the next: around a cube
+    // corner (three cells) the a_k of the cells nearly cancel in the vertex's row, so
+    // that row no longer holds the vertex's tangential motion. There each vertex gets
+    // its own orthonormal frame of the plane normal to its vertex normal.
+    const auto frame = [&](const unsigned int j, const unsigned int k, const PointData &d) -> Tensor<1, spacedim> {
+      return periodic ? d.unit_tangent[k] : vertex_frame[vertex_of[j]][k];
+    };
+    const auto test_tangent = [&](const unsigned int i, const unsigned int k, const PointData &d) -> Tensor<1, spacedim> {
+      return periodic ? d.tangent[k] : vertex_frame[vertex_of[i]][k];
+    };
     for (const auto &cell : space.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -82,6 +117,18 @@ namespace Membrane
           scalar_values.get_function_values(potential, Y_q);
           vector_values[all_components].get_function_values(geometry.normal, nu_q);
           vector_values[all_components].get_function_gradients(geometry.normal, grad_nu_q);
+          if (!periodic)
+            {
+              vectors.cell(cell)->get_dof_values(geometry.normal, normal_dofs);
+              for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
+                {
+                  Tensor<1, spacedim> nu;
+                  for (unsigned int i = 0; i < normal_dofs.size(); ++i)
+                    if (vectors.fe().system_to_component_index(i).second == v)
+                      nu[vectors.fe().system_to_component_index(i).first] = normal_dofs[i];
+                  vertex_frame[v] = tangent_frame(nu);
+                }
+            }
           // Reference edge lengths turn the unit-cell Jacobian into a_k = dX/du_k.
           const double reference_length[2] = {cell->vertex(1).distance(cell->vertex(0)),
                                                cell->vertex(2).distance(cell->vertex(0))};
@@ -152,7 +199,7 @@ namespace Membrane
                           else if (cj == curvature_component)
                             a = v * d.nu[ci] * psi;
                           else if (cj >= first_tangent_component)
-                            a = v * d.unit_tangent[cj - first_tangent_component][ci] * psi;
+                            a = v * frame(j, cj - first_tangent_component, d)[ci] * psi;
                         }
                       else if (ci == pressure_component) // area row
                         {
@@ -172,11 +219,11 @@ namespace Membrane
                         }
                       else // tangential row k
                         {
-                          const unsigned int k = ci - first_tangent_component;
+                          const Tensor<1, spacedim> &t = test_tangent(i, ci - first_tangent_component, d);
                           if (cj < spacedim)
-                            a = v * d.tangent[k][cj] * psi;
+                            a = v * t[cj] * psi;
                           else if (cj == pressure_component)
-                            a = -tauL * (gv * d.tangent[k]) * psi;
+                            a = -tauL * (gv * t) * psi;
                         }
                       local_matrix(i, j) += a;
                     }
@@ -189,7 +236,7 @@ namespace Membrane
                   else if (ci == curvature_component)
                     b = tauL * (d.flux * grad_psi + d.source * psi);
                   else
-                    b = tauL * d.Y * d.d_phi[ci - first_tangent_component] * psi;
+                    b = tauL * d.Y * (d.grad_phi * test_tangent(i, ci - first_tangent_component, d)) * psi;
                   local_rhs(i) += b;
                 }
             }
