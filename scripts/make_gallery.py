@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Render the gallery docs/gallery.md: one picture per figure of the paper (Figs. 7.1-7.4),
-made from the runs of scripts/run_experiments.sh in results/. Each panel is a snapshot of a
+"""Render the gallery docs/gallery.md: one picture per figure of the paper (Figs. 7.1-7.4)
+and one of the closed vesicles, made from the runs of scripts/run_experiments.sh in results/. Each panel is a snapshot of a
 run coloured by phi, rendered with VTK (scripts/render_surface.py); energy panels come from
 the statistics.
 
@@ -45,18 +45,25 @@ FIGURES = [
      [('7.4A-sigma90', None, 'A: sigma 90', 15), ('7.4B-sigma540', None, 'B: sigma 540', 15),
       ('7.4C-sigma630', None, 'C: sigma 630', 15), ('7.4C-sigma1000', None, "C': sigma 1000", 10),
       ('7.4D-small-domain', None, 'D: small domain', 15), ('7.4D-sigma1000', None, "D': small domain, sigma 1000", 15), ('7.4E-opposite-side', None, 'E: H0_A = +5', 10)]),
+    ('Closed vesicles', 'Beyond the paper ([vesicles.md](vesicles.md)): a homogeneous vesicle relaxed to the prolate '
+     'equilibrium at reduced volume 0.9 (A); a cap domain at the tip of a prolate vesicle of fixed volume '
+     '(B) pulled out by its line tension (C); a random mixture with H0_A = -2 (D) sorted into outward-bulging '
+     'phase-A domains (E).',
+     [('vesicle-prolate', None, 'A: prolate, v = 0.9', 20), ('vesicle-domain-budding', 0.0, 'B: cap, t = 0', 20),
+      ('vesicle-domain-budding', None, 'C: cap, end', 20), ('vesicle-sorting', 0.0, 'D: mixture, t = 0', 20),
+      ('vesicle-sorting', None, 'E: sorted, end', 20)]),
 ]
 
-lines = ['# Gallery: the paper\'s figures 7.1-7.4\n',
+lines = ['# Gallery: the paper\'s figures 7.1-7.4 and closed vesicles\n',
          'Each picture is made from the full runs of the experiments (`experiments/`, see',
          '[experiments.md](experiments.md)); red is phase A (phi = +1), blue phase B. To regenerate all:\n',
-         '```sh\nscripts/run_experiments.sh            # the runs, into results/ (~15 min)',
+         '```sh\nscripts/run_experiments.sh            # the runs, into results/ (~35 min)',
          'scripts/make_gallery.py results docs   # this page\n```\n']
 for figure, caption, panels in FIGURES:
     runs = sorted({p[0] for p in panels if p[0] != 'energy'} |
                   {r for p in panels if p[0] == 'energy' for r in p[1]})
     if not all(os.path.exists(os.path.join(results, r, 'surface.pvd')) for r in runs):
-        print(f'skipping Fig. {figure}: missing runs in {results}')
+        print(f'skipping {figure}: missing runs in {results}')
         continue
     columns = len(panels) if len(panels) <= 4 else 4
     rows = (len(panels) + columns - 1) // columns
@@ -95,13 +102,15 @@ for figure, caption, panels in FIGURES:
     fig.colorbar(plt.cm.ScalarMappable(cmap='coolwarm', norm=plt.Normalize(-1, 1)), cax=bar, label='phi',
                  ticks=np.linspace(-1, 1, 5))
     fig.tight_layout()
-    name = f'fig{figure}.png'
+    paper_figure = figure[0].isdigit()
+    heading = f'Fig. {figure}' if paper_figure else figure
+    name = f'fig{figure}.png' if paper_figure else figure.lower().replace(' ', '-') + '.png'
     fig.savefig(os.path.join(images, name + '.partial.png'))
     plt.close(fig)
     os.replace(os.path.join(images, name + '.partial.png'), os.path.join(images, name))
     commands = '\n'.join(command(r) for r in runs)
-    lines += [f'## Fig. {figure}\n', caption + '\n', f'![Fig. {figure}](images/gallery/{name})\n',
+    lines += [f'## {heading}\n', caption + '\n', f'![{heading}](images/gallery/{name})\n',
               f'Runs:\n\n```sh\n{commands}\n```\n']
-    print(f'Fig. {figure}: {name}')
+    print(f'{heading}: {name}')
 with open(os.path.join(docs, 'gallery.md'), 'w') as f:
     f.write('\n'.join(lines))

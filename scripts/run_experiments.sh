@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Runs every experiment of the paper (experiments/7*.prm, plus 7.4 C and D at sigma = 1000)
-# at full length into results/, then regenerates docs/experiments.md and its pictures.
-# About 25-30 minutes on 2 cores (the budding runs refine the mesh locally). Usage: scripts/run_experiments.sh [membrane-flow]
+# and the closed vesicles (experiments/vesicle-*.prm) at full length into results/, then
+# regenerates docs/experiments.md, the gallery and their pictures.
+# About 35 minutes on 2 cores (the budding runs refine the mesh locally). Usage: scripts/run_experiments.sh [membrane-flow]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 exe=${1:-build/membrane-flow}
-for f in experiments/7*.prm; do
+for f in experiments/7*.prm experiments/vesicle-*.prm; do
   echo "running $f"
   "$exe" --quiet --overwrite "$f" | tail -n 3
 done

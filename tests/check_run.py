@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Check a finished run directory (statistics.txt and summary.json).
 Usage: check_run.py <dir> [--direction +1|-1] [--max-drift X] [--outcome NAME] [--min-rejected N] [--stop-reason REGEX]
+       [--max-mass-drift X] [--max-area-error X] [--min-adaptations N] [--min-protrusion X]
 Always asserts: the run did not fail, and the discrete energy never increases
 from one accepted step to the next (beyond 1e-10 relative). Mesh adaptations are not
 steps of the gradient flow: their energy changes (column adaptation_energy_jump,
@@ -21,6 +22,7 @@ parser.add_argument("--stop-reason", help="regular expression the stop reason mu
 parser.add_argument("--min-adaptations", type=int, help="mesh adaptations the run must have made")
 parser.add_argument("--max-mass-drift", type=float, help="bound on |mass_drift| in every row")
 parser.add_argument("--min-protrusion", type=float, help="lower bound on the final domain_protrusion")
+parser.add_argument("--max-area-error", type=float, help="bound on the local vertex-area error area_error in every row")
 args = parser.parse_args()
 
 with open(f"{args.dir}/statistics.txt") as f:
@@ -62,6 +64,9 @@ if args.min_adaptations is not None:
 if args.max_mass_drift is not None:
     drift = np.abs(column["mass_drift"]).max()
     check(drift <= args.max_mass_drift, f"mass drift {drift:.2e} <= {args.max_mass_drift:g} in every row")
+if args.max_area_error is not None:
+    error = column["area_error"].max()
+    check(error <= args.max_area_error, f"local area error {error:.2e} <= {args.max_area_error:g} in every row")
 if args.min_protrusion is not None:
     check(summary["domain_protrusion"] >= args.min_protrusion,
           f"domain protrusion {summary['domain_protrusion']:.3f} >= {args.min_protrusion:g} "
