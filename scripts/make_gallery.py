@@ -48,10 +48,10 @@ FIGURES = [
     ('Closed vesicles', 'Beyond the paper ([vesicles.md](vesicles.md)): a homogeneous vesicle relaxed to the prolate '
      'equilibrium at reduced volume 0.9 (A); a cap domain at the tip of a prolate vesicle of fixed volume '
      '(B) pulled out by its line tension (C); a random mixture with H0_A = -2 (D) sorted into outward-bulging '
-     'phase-A domains (E).',
+     'phase-A domains (E); the energies of both phase-field runs decay (F).',
      [('vesicle-prolate', None, 'A: prolate, v = 0.9', 20), ('vesicle-domain-budding', 0.0, 'B: cap, t = 0', 20),
       ('vesicle-domain-budding', None, 'C: cap, end', 20), ('vesicle-sorting', 0.0, 'D: mixture, t = 0', 20),
-      ('vesicle-sorting', None, 'E: sorted, end', 20)]),
+      ('vesicle-sorting', None, 'E: sorted, end', 20), ('energy', ['vesicle-domain-budding', 'vesicle-sorting'])]),
 ]
 
 lines = ['# Gallery: the paper\'s figures 7.1-7.4 and closed vesicles\n',
