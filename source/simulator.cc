@@ -4,6 +4,7 @@
 #include <membrane/io/log_file.h>
 #include <membrane/io/stop_signal.h>
 #include <membrane/simulator.h>
+#include <membrane/surface/adaptivity.h>
 #include <membrane/surface/closed_surfaces.h>
 #include <membrane/surface/grid_control.h>
 #include <membrane/surface/initial_shapes.h>
@@ -191,6 +192,21 @@ namespace Membrane
     output->write(surface, geometry, {{"phi", &phi}, {"Y", &chemical_potential}, {"gamma", &pressure}}, time, step);
   }
 
+  std::string Simulator::curvature_resolution_note() const
+  {
+    // Energy rises that do not shrink with tau: on a mesh too coarse for the curvature
+    // the discrete shape velocity is no longer a descent direction of the discrete
+    // energy (docs/reliability.md). Say so when the mesh is that coarse.
+    const double arc   = largest_curvature_per_cell(triangulation, surface, geometry);
+    const double bound = 2 * parameters.adaptivity.curvature_resolution;
+    if (arc <= bound)
+      return "";
+    return "; the mesh does not resolve the curvature (the most bent cell spans " + format(arc) +
+           " rad of arc, more than 2 x <Mesh/Curvature resolution> = " + format(bound) +
+           "), where the discrete shape step stops being a descent step of the discrete energy: refine with "
+           "<Mesh/Maximum refinement level> or <Mesh/Cells per side>";
+  }
+
   bool Simulator::end_time_reached() const
   {
     return time >= parameters.end_time * (1 - 1e-12);
@@ -257,7 +273,7 @@ namespace Membrane
         ++rejected_steps;
         if (!step_control.reject(trial, rejection_factor))
           return stop("step failed at t = " + format(time) + ": " + why +
-                        (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>"
+                        (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>" + curvature_resolution_note()
                                              : "; reduce <Time stepping/Time step> or set Adaptive = true") +
                         ". The last good state is kept",
                       true);
@@ -268,7 +284,8 @@ namespace Membrane
             const bool budded = classify_outcome(bud, parameters.outcome, false) == "complete bud";
             return stop(std::string(budded ? "pinch-off approach" : "stalled") + " at t = " + format(time) +
                           ": half of the last 20 steps were rejected (last: " + why +
-                          ") at tau = " + format(step_control.tau()) + ". The last good state is kept",
+                          ") at tau = " + format(step_control.tau()) + curvature_resolution_note() +
+                          ". The last good state is kept",
                         !budded);
           }
         return true;

@@ -6,6 +6,7 @@
 #include <membrane/physics/initial_phase.h>
 #include <membrane/physics/volume.h>
 #include <membrane/simulator.h>
+#include <membrane/surface/adaptivity.h>
 #include <membrane/surface/closed_surfaces.h>
 #include <membrane/surface/gauss_map.h>
 #include <membrane/surface/geometry.h>
@@ -112,6 +113,24 @@ TEST(Vesicle, GaussBonnetOnSpheresAndEllipsoids)
   ellipsoid.semi_axes               = {{1.5, 0.8, 0.6}};
   const ClosedSurface s(ellipsoid);
   EXPECT_NEAR(gauss_map_area(s.surface, s.geometry.normal), 4 * pi, 1e-12);
+}
+
+// The curvature resolution reported with failed steps (h kappa_max of the most bent cell)
+// falls at first order under refinement and does not depend on the radius. (Its size,
+// 2.7 x pi / (2 n) on a cube-sphere, comes from the principal curvatures at the cube
+// corners, where the discrete H^2/4 - K is not small.)
+TEST(Vesicle, LargestCurvaturePerCellHalvesWithTheCells)
+{
+  std::vector<double> arcs;
+  for (const unsigned int n : {8u, 16u, 32u})
+    {
+      const ClosedSurface unit(sphere(n)), small(sphere(n, 0.3));
+      arcs.push_back(largest_curvature_per_cell(unit.tria, unit.surface, unit.geometry));
+      EXPECT_NEAR(largest_curvature_per_cell(small.tria, small.surface, small.geometry), arcs.back(), 1e-12 * arcs.back());
+      EXPECT_GT(arcs.back(), pi / (2 * n)) << n << " cells per side"; // at least the arc of one cell
+    }
+  EXPECT_NEAR(arcs[0] / arcs[1], 2, 0.2);
+  EXPECT_NEAR(arcs[1] / arcs[2], 2, 0.2);
 }
 
 // The bending energy 1/2 integral H^2 ds of the unit sphere (kappa = 1, H0 = 0) tends to

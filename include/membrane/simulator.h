@@ -131,6 +131,8 @@ namespace Membrane
     /// false (and a warning, once) when refining n_refine cells would not fit in the
     /// available memory; collective.
     bool      refinement_fits(unsigned int n_refine);
+    /// For a failed or stalled run: a note when the mesh does not resolve the curvature.
+    std::string curvature_resolution_note() const;
     /// Refine the initial mesh where the initial state asks for it (up to the maximum
     /// level), setting the initial state anew on each mesh.
     void      adapt_initial_mesh();

@@ -115,6 +115,15 @@ namespace Membrane
     return Utilities::MPI::logical_or(leaves, triangulation.get_communicator());
   }
 
+  double largest_curvature_per_cell(const Triangulation &triangulation, const Surface &surface, const Geometry &geometry)
+  {
+    double local = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        local = std::max(local, cell_size(surface, cell) * largest_principal_curvature(surface.scalar_space(), cell, geometry));
+    return Utilities::MPI::max(local, triangulation.get_communicator());
+  }
+
   double interface_cell_size(const Surface &surface, const Vector &phi, const double interface_phi)
   {
     double local = 0;

@@ -53,6 +53,11 @@ namespace Membrane
                                                    double transition_length, const AdaptivityOptions &options,
                                                    unsigned int base_level);
 
+  /// The largest h kappa_max over the cells (h the cell size, kappa_max the largest principal
+  /// curvature at its vertices): the angle of arc, in radians, that the most bent cell spans.
+  double largest_curvature_per_cell(const Triangulation &triangulation, const Surface &surface,
+                                    const Geometry &geometry);
+
   /// True (on every rank) when the mesh no longer resolves what mark_cells() refines for,
   /// between two scheduled adaptations: a cell below the maximum level holds the
   /// interface and is coarser than the interface target, or bends by more than twice the
