@@ -127,6 +127,11 @@ namespace Membrane
     next_output_time   = scalars.at("next_output_time");
     if (scalars.count("wall_seconds"))
       earlier_wall_seconds = scalars.at("wall_seconds"); // the run's wall time counts all its segments
+    if (scalars.count("pressure_work"))
+      {
+        pressure_work   = scalars.at("pressure_work");
+        volume_pressure = scalars.at("volume_pressure");
+      }
     if (scalars.count("adaptations"))
       {
         adaptations            = static_cast<unsigned int>(scalars.at("adaptations"));
@@ -293,8 +298,10 @@ namespace Membrane
     time += trial;
     ++step;
     grid_control_skipped += grid_move_skipped;
+    pressure_work += step_pressure_work;
     record_statistics(trial);
-    const double change = std::abs(energy.total() - energy_before) / std::max(std::abs(energy_before), 1e-300);
+    const double change =
+      std::abs(energy.total() - energy_before - step_pressure_work) / std::max(std::abs(energy_before), 1e-300);
     step_control.accept(trial, max_increment, reference_cell_size(), change, error_estimate);
     previous_increment  = step_increment;
     previous_phi_change = step_phi_change;

@@ -106,7 +106,9 @@ namespace Membrane
                      {"cells_per_side", parameters.cells_per_side},
                      {"wall_seconds", earlier_wall_seconds + wall.wall_time()},
                      {"adaptation_energy_jump", adaptation_energy_jump},
-                     {"initial_volume", initial_volume}},
+                     {"initial_volume", initial_volume},
+                     {"volume_pressure", volume_pressure},
+                     {"pressure_work", pressure_work}},
                     stats.to_text(), options.parameter_text);
   }
 
@@ -154,8 +156,8 @@ namespace Membrane
                           "adaptations", "adaptation_energy_jump"})
       summary.add(c, stats.last(c));
     if (closed())
-      for (const char *c : {"volume", "volume_drift", "reduced_volume", "pressure", "laplace_pressure", "integral_K",
-                            "gauss_map_area"})
+      for (const char *c : {"volume", "volume_drift", "reduced_volume", "pressure", "pressure_work", "laplace_pressure",
+                            "integral_K", "gauss_map_area"})
         summary.add(c, stats.last(c));
     write_file_atomically(parameters.output_directory + "/summary.json", summary.str());
   }

@@ -155,8 +155,10 @@ namespace Membrane
   {
     const Material &material = parameters.material;
     const State     before   = save_state();
+    const double    pressure_before = volume_pressure;
     const auto      restore  = [&](const Rejection &why) {
       restore_state(before);
+      volume_pressure = pressure_before;
       return why;
     };
     grid_move_skipped = false;
@@ -181,14 +183,17 @@ namespace Membrane
 
         max_increment    = 0;
         remap_correction = 0;
+        step_pressure_work = 0;
         if (parameters.evolve_shape)
           {
+            const double volume_before = volume_term(tau_trial).active ? enclosed_volume(surface) : 0;
             if (!move_shape(tau_trial, phi_new))
               return restore("the shape solve gave non-finite values");
+            step_pressure_work = pressure_work_of_step(volume_before, pressure_before);
           }
         else
           phi = phi_new;
-        control_grid(before.energy.total());
+        control_grid(before.energy.total() + step_pressure_work);
         cell_quality = min_corner_sine(surface, geometry.normal);
       }
     catch (const std::exception &)
@@ -208,7 +213,9 @@ namespace Membrane
       return restore("a vertex would move " + format(moved_cells) + " cell sizes in one step (more than <Time "
                      "stepping/Maximum increment> = " + format(parameters.max_increment_cells) +
                      "; 0 there: no bound)");
-    const double rise = energy.total() - before.energy.total();
+    // A moving volume target or a prescribed pressure does work p dV on the membrane:
+    // F - integral p dV, not F, is what the constrained gradient flow decreases.
+    const double rise = energy.total() - before.energy.total() - step_pressure_work;
     if (rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
       return restore("the energy would rise by " + format(rise));
     step_error     = previous_tau > 0 ? local_error(tau_trial) : -1;

@@ -52,6 +52,18 @@ namespace Membrane
     return term;
   }
 
+  double Simulator::pressure_work_of_step(const double volume_before, const double pressure_before) const
+  {
+    // integral p dV over the step by the trapezoidal rule in p (p^m of the previous step,
+    // p^{m+1} of this one; a prescribed pressure is the same at both ends). With a fixed,
+    // unmoving target dV is round-off; it matters when V_target is ramped.
+    const VolumeCoupling term = volume_term(trial_end_time - time);
+    if (!term.active)
+      return 0;
+    const double p_before = term.fixed ? (step > 0 ? pressure_before : volume_pressure) : term.pressure;
+    return 0.5 * (p_before + volume_pressure) * (enclosed_volume(surface) - volume_before);
+  }
+
   void Simulator::restore_volume()
   {
     // dV/dalpha = integral nu.n ds for X + alpha nu (nu: the vertex normals, Q1); two
@@ -96,12 +108,15 @@ namespace Membrane
 
   BudShape Simulator::measure_vesicle_bud() const
   {
-    // The patch's height and neck observables have no meaning on a vesicle; the domain
-    // protrusion, measured along the vesicle's domain axis, feeds the outcome classification.
+    // The patch's height has no meaning on a vesicle; the domain protrusion and the neck,
+    // measured along the vesicle's domain axis, feed the outcome classification.
     const VesicleDomain domain = measure_vesicle_domain(surface, phi);
     BudShape            shape;
     shape.domain_area       = domain.domain_area;
     shape.domain_protrusion = domain.protrusion;
+    shape.neck_radius       = domain.neck_radius;
+    shape.bud_radius        = domain.bud_radius;
+    shape.neck_ratio        = domain.neck_ratio;
     return shape;
   }
 
@@ -134,6 +149,7 @@ namespace Membrane
     stats.set("volume_drift", (volume - target) / initial_volume);
     stats.set("reduced_volume", reduced_volume(volume, area));
     stats.set("pressure", volume_pressure);
+    stats.set("pressure_work", pressure_work);
     stats.set("laplace_pressure", volume_pressure + tension_jump);
     stats.set("volume_compliance", parameters.volume.constraint == "free" ? 1.0 : shape_solver.volume_compliance());
     stats.set("integral_K", integrate(surface, geometry.gauss_curvature));

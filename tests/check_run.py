@@ -5,7 +5,8 @@ Usage: check_run.py <dir> [--direction +1|-1] [--max-drift X] [--outcome NAME] [
 Always asserts: the run did not fail, and the discrete energy never increases
 from one accepted step to the next (beyond 1e-10 relative). Mesh adaptations are not
 steps of the gradient flow: their energy changes (column adaptation_energy_jump,
-cumulative) are taken out before the comparison."""
+cumulative) are taken out before the comparison, and so is the work p dV done on a
+vesicle by a moving volume target or a prescribed pressure (column pressure_work)."""
 import argparse
 import json
 import sys
@@ -40,7 +41,8 @@ def check(condition, message):
 
 check(not summary["failed"], f"run finished: {summary['stop_reason']} after {summary['steps']} steps")
 energy = column["energy"]
-flow_energy = energy - column.get("adaptation_energy_jump", 0 * energy)
+# F - (the work p dV of a moving volume target or a prescribed pressure) decreases.
+flow_energy = energy - column.get("adaptation_energy_jump", 0 * energy) - column.get("pressure_work", 0 * energy)
 rises = np.diff(flow_energy) / np.abs(energy[:-1])
 check(len(energy) > 5 and rises.max() <= 1e-10,
       f"energy {energy[0]:.6g} -> {energy[-1]:.6g} over {len(energy) - 1} steps, largest relative rise {rises.max():.2e}")

@@ -1,11 +1,13 @@
 // Cross-sections and the neck on surfaces of revolution with a known neck: a
 // sphere on a neck of given radius, spherical caps with and without an overhang,
-// and planes that have no closed section around the axis.
+// planes that have no closed section around the axis, and a budded closed vesicle
+// on an oblique axis.
 
 #include <membrane/analysis/cross_sections.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace Membrane;
@@ -125,4 +127,55 @@ TEST(CrossSections, OnlyClosedSectionsAroundTheAxisCount)
   for (const auto &quad : revolve(outer, 256))
     cylinders.push_back(quad);
   EXPECT_NEAR(section_radius(cylinders, axis, 0.0, 1.0), 0.1, 1e-4);
+}
+
+// A closed vesicle with a bud, as a vesicle run measures it: a mother sphere of radius 1,
+// a quarter-circle fillet (radius 0.05) from its top to a neck of radius 0.1, and a bud
+// sphere of radius 0.35 above, turned to an oblique axis and shifted. The sections normal
+// to that axis, from the mother's centre to the bud's top, find the neck and the bud
+// within 3 %; a sphere alone has no neck.
+TEST(CrossSections, NeckAlongAnObliqueAxisOfAClosedVesicle)
+{
+  const double r_neck = 0.1, R_bud = 0.35, a = 0.05, R_mother = 1.0;
+  std::vector<std::pair<double, double>> profile;
+  const double z_fillet = std::sqrt(R_mother * R_mother - (r_neck + a) * (r_neck + a)); // where the fillet starts
+  for (int i = 0; i <= 200; ++i)
+    {
+      const double psi = (M_PI - std::asin((r_neck + a) / R_mother)) * i / 200.0;
+      profile.emplace_back(R_mother * std::sin(psi), -R_mother * std::cos(psi));
+    }
+  for (int i = 1; i <= 40; ++i)
+    {
+      const double t = 0.5 * M_PI * i / 40;
+      profile.emplace_back(r_neck + a - a * std::sin(t), z_fillet + a - a * std::cos(t));
+    }
+  const double zc = z_fillet + a + std::sqrt(R_bud * R_bud - r_neck * r_neck);
+  add_sphere(profile, R_bud, zc, std::asin(r_neck / R_bud));
+  auto quads = revolve(profile, 128);
+
+  // Turn about the y axis by 50 degrees, then about z by 30, and shift.
+  const double       b = 50 * M_PI / 180, c = 30 * M_PI / 180;
+  const auto         turn = [&](const dealii::Tensor<1, 3> &v) {
+    const dealii::Tensor<1, 3> w({std::cos(b) * v[0] + std::sin(b) * v[2], v[1], -std::sin(b) * v[0] + std::cos(b) * v[2]});
+    return dealii::Tensor<1, 3>({std::cos(c) * w[0] - std::sin(c) * w[1], std::sin(c) * w[0] + std::cos(c) * w[1], w[2]});
+  };
+  const Point<3> origin(0.3, -0.2, 0.7);
+  for (auto &quad : quads)
+    for (auto &p : quad)
+      p = origin + turn(p - Point<3>(axis[0], axis[1], 0.0));
+  const dealii::Tensor<1, 3> direction = turn(dealii::Tensor<1, 3>({0., 0., 1.}));
+
+  const Neck neck = find_neck_along(quads, origin, direction, 0.0, zc + R_bud);
+  EXPECT_NEAR(neck.radius / r_neck, 1.0, 0.03);
+  EXPECT_NEAR(neck.height, z_fillet + a, 0.02);
+  EXPECT_NEAR(neck.bud_radius / R_bud, 1.0, 0.03);
+  EXPECT_NEAR(neck.ratio / (r_neck / R_bud), 1.0, 0.03);
+
+  std::vector<std::pair<double, double>> sphere;
+  add_sphere(sphere, R_mother, 0.0, 0.0);
+  auto ball = revolve(sphere, 128);
+  for (auto &quad : ball)
+    for (auto &p : quad)
+      p = origin + turn(p - Point<3>(axis[0], axis[1], 0.0));
+  EXPECT_EQ(find_neck_along(ball, origin, direction, 0.0, R_mother).ratio, 1.0);
 }

@@ -155,6 +155,9 @@ namespace Membrane
     /// After grid control: a uniform normal shift alpha nu (Newton on alpha) puts V back on
     /// V_target(t_{m+1}); a constant restores integral phi ds.
     void           restore_volume();
+    /// The work integral p dV done on the membrane by the shape step just made (from
+    /// the volume before it and the pressure of the previous step); 0 without a volume term.
+    double         pressure_work_of_step(double volume_before, double pressure_before) const;
     /// Size of the finest cells of the input mesh (the patch: 1 / (Cells per side 2^level)),
     /// the scale of shape increments for step control.
     double         reference_cell_size() const;
@@ -194,6 +197,9 @@ namespace Membrane
     /// Closed surfaces: V_0, the volume pressure p of the last step (step and projections),
     /// and the mean cell size of the input mesh.
     double initial_volume = 0, volume_pressure = 0, input_cell_size = 0;
+    /// The work integral p dV done on the membrane by the volume term: in the trial step,
+    /// and summed over the run (F - pressure_work never increases).
+    double step_pressure_work = 0, pressure_work = 0;
     double trial_end_time = 0; ///< t_{m+1} of the trial step
     unsigned int area_projections = 0;
     /// Accuracy control: the physical increments of the trial step and of the last

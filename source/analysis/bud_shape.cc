@@ -1,5 +1,6 @@
 #include <membrane/analysis/bud_shape.h>
 #include <membrane/analysis/cross_sections.h>
+#include <membrane/analysis/surface_quads.h>
 
 #include <deal.II/base/geometry_info.h>
 #include <deal.II/base/mpi.h>
@@ -46,29 +47,8 @@ namespace Membrane
   {
     // Every rank gathers the cells (current vertex positions, and phi there) of all
     // ranks: the cross-sections need whole cells, the averages below their edges.
-    std::vector<double> local, local_phi;
-    for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const auto X           = surface.mapping().get_vertices(cell);
-          const auto scalar_cell = surface.scalar_space().cell(cell);
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              local.insert(local.end(), {X[v][0], X[v][1], X[v][2]});
-              local_phi.push_back(phi[scalar_cell->vertex_dof_index(v, 0)]);
-            }
-        }
-    const MPI_Comm           comm = surface.vector_space().communicator();
-    std::vector<SurfaceQuad> quads;
-    std::vector<double>      quad_phi;
-    for (const auto &part : Utilities::MPI::all_gather(comm, local))
-      for (std::size_t i = 0; i + 12 <= part.size(); i += 12)
-        quads.push_back({{Point<spacedim>(part[i], part[i + 1], part[i + 2]),
-                          Point<spacedim>(part[i + 3], part[i + 4], part[i + 5]),
-                          Point<spacedim>(part[i + 6], part[i + 7], part[i + 8]),
-                          Point<spacedim>(part[i + 9], part[i + 10], part[i + 11])}});
-    for (const auto &part : Utilities::MPI::all_gather(comm, local_phi))
-      quad_phi.insert(quad_phi.end(), part.begin(), part.end());
+    std::vector<double>            quad_phi;
+    const std::vector<SurfaceQuad> quads = gather_surface_quads(surface, &phi, &quad_phi);
     // The edges, as pairs of end points.
     std::vector<Point<spacedim>> edges;
     std::vector<double>          edge_phi;

@@ -7,6 +7,7 @@
 namespace Membrane
 {
   using dealii::Point;
+  using dealii::Tensor;
 
   namespace
   {
@@ -119,6 +120,42 @@ namespace Membrane
               break;
             }
       }
+    return neck;
+  }
+
+  Neck find_neck_along(const std::vector<SurfaceQuad> &quads, const Point<3> &origin, const Tensor<1, 3> &axis,
+                       const double base, const double apex, const unsigned int levels)
+  {
+    // Coordinates in an orthonormal frame (e1, e2, axis): the planes become horizontal and
+    // the axis the vertical line through (0, 0).
+    const Tensor<1, 3> helper = std::abs(axis[0]) < 0.9 ? Tensor<1, 3>({1., 0., 0.}) : Tensor<1, 3>({0., 1., 0.});
+    Tensor<1, 3>       e1     = helper - (helper * axis) * axis;
+    e1 /= e1.norm();
+    const Tensor<1, 3>       e2 = cross_product_3d(axis, e1);
+    std::vector<SurfaceQuad> turned(quads.size());
+    for (std::size_t c = 0; c < quads.size(); ++c)
+      for (unsigned int v = 0; v < 4; ++v)
+        {
+          const Tensor<1, 3> r = quads[c][v] - origin;
+          turned[c][v]         = Point<3>(r * e1, r * e2, r * axis);
+        }
+    // A vesicle's sections span the whole vesicle, so the levels lie farther apart than
+    // on the patch: the narrowest one is sought again on as many levels within one
+    // spacing either side of it.
+    Neck         neck    = find_neck(turned, Point<2>(0, 0), base, apex, 0.0, levels);
+    const double spacing = (apex - base) / levels;
+    if (neck.ratio < 1)
+      for (unsigned int j = 0; j <= levels; ++j)
+        {
+          const double h = neck.height + spacing * (2.0 * j / levels - 1);
+          const double r = section_radius(turned, Point<2>(0, 0), h, 0.0);
+          if (r > 0 && r < neck.radius)
+            {
+              neck.radius = r;
+              neck.height = h;
+              neck.ratio  = r / neck.bud_radius;
+            }
+        }
     return neck;
   }
 } // namespace Membrane

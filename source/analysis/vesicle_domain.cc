@@ -1,3 +1,4 @@
+#include <membrane/analysis/surface_quads.h>
 #include <membrane/analysis/vesicle_domain.h>
 
 #include <deal.II/base/geometry_info.h>
@@ -81,6 +82,13 @@ namespace Membrane
     rim_count = Utilities::MPI::sum(rim_count, comm);
     if (rim_count > 0)
       result.protrusion = (top - rim_sum / rim_count) / (2 * std::sqrt(result.domain_area / (4 * numbers::PI)));
+    if (top > 0)
+      {
+        const Neck neck    = find_neck_along(gather_surface_quads(surface), Point<spacedim>(centroid), axis, 0.0, top);
+        result.neck_radius = neck.radius;
+        result.bud_radius  = neck.bud_radius;
+        result.neck_ratio  = neck.ratio;
+      }
     return result;
   }
 } // namespace Membrane

@@ -16,6 +16,7 @@
 // than one above it: a dome without a neck), bud_radius the widest section above.
 
 #include <deal.II/base/point.h>
+#include <deal.II/base/tensor.h>
 
 #include <array>
 #include <vector>
@@ -43,4 +44,12 @@ namespace Membrane
   /// from base to apex), sampled on `levels` heights.
   Neck find_neck(const std::vector<SurfaceQuad> &quads, const dealii::Point<2> &axis, double base, double apex,
                  double period, unsigned int levels = 64);
+
+  /// The same along an arbitrary axis (a closed vesicle): the sections are the planes
+  /// normal to the unit vector `axis` at the heights h = (x - origin) . axis between
+  /// `base` and `apex`, each read around the line through `origin` along `axis`. Not
+  /// periodic; Neck::height is such an h. The narrowest level is refined on `levels`
+  /// more levels within one level spacing either side.
+  Neck find_neck_along(const std::vector<SurfaceQuad> &quads, const dealii::Point<3> &origin,
+                       const dealii::Tensor<1, 3> &axis, double base, double apex, unsigned int levels = 64);
 } // namespace Membrane
