@@ -324,6 +324,58 @@ def resume_records_changed_parameters_and_total_wall_time():
             f'summary after resume: steps {summary["steps"]}, wall {summary["wall_seconds"]} (first {first_wall})')
 
 
+@check
+def disk_write_failure_keeps_the_last_good_files():
+    # A write that fails part-way (a full disk, a quota): here the file-size limit RLIMIT_FSIZE,
+    # under which write() fails with EFBIG once a file would grow past it, as it fails with
+    # ENOSPC on a full disk (SIGXFSZ ignored, so the error reaches the program). The limit
+    # lets the snapshots and the first checkpoint (step 5) through and stops the second one
+    # (step 10, whose statistics are longer).
+    import resource
+    base = ['--quiet', '--set', 'Checkpoint/Interval=5', '--set', 'Output/Interval=0.0005']
+    reference = fresh('write-reference')
+    got, output = run(base + ['--set', 'Time stepping/Maximum steps=5'] + out(reference) + [SMALL])
+    require(got == 0, f'reference run: exit code {got}', output)
+    first_checkpoint = os.path.getsize(os.path.join(reference, 'checkpoint.txt'))
+    largest_other = max(os.path.getsize(os.path.join(reference, n)) for n in os.listdir(reference)
+                        if n != 'checkpoint.txt')
+    limit = first_checkpoint + 1000
+    require(largest_other < limit, f'set-up: a file of {largest_other} bytes would not fit under {limit}')
+
+    def limit_file_size():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    d = fresh('write-failure')
+    result = subprocess.run([EXE] + base + ['--set', 'Time stepping/Maximum steps=20'] + out(d) + [SMALL], cwd=WORK,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                            env=dict(ENV, PMIX_MCA_gds='hash'),  # MPI start-up without shared-memory files
+                            timeout=120, preexec_fn=limit_file_size, restore_signals=False)
+    output = result.stdout.decode('utf-8', 'replace')
+    require(result.returncode == 1, f'exit code {result.returncode}, expected 1', output)
+    partial = os.path.join(d, 'checkpoint.txt.partial')
+    require(re.search(r'Error: .*Writing <' + re.escape(partial) + r'> failed: File too large \(the file under its '
+                      r'final name is unchanged\)', output), 'the write error does not name the file and the cause',
+            output)
+    lines = [line for line in output.splitlines() if line.strip()]
+    require(lines[-1].startswith('Error:'), 'the error message is not the last line', output)
+    # Under their final names: the complete first checkpoint, and only complete snapshots.
+    def checkpoint_lines(directory):
+        with open(os.path.join(directory, 'checkpoint.txt')) as f:
+            return f.readlines()
+    kept = checkpoint_lines(d)  # as long as the reference's (their wall times differ), of step 5
+    require(len(kept) == len(checkpoint_lines(reference)) and 'step 5\n' in kept,
+            'checkpoint.txt is not the complete checkpoint of step 5')
+    for name in os.listdir(d):
+        if name.endswith('.vtu'):
+            with open(os.path.join(d, name), 'rb') as f:
+                require(f.read().rstrip().endswith(b'</VTKFile>'), f'{name} is truncated')
+    # The run continues from its last good checkpoint once there is room again.
+    got, output = run(['--quiet', '--set', 'Time stepping/Maximum steps=8', '--set',
+                       f'Checkpoint/Resume from={d}/checkpoint.txt'] + out(d) + [SMALL])
+    require(got == 0 and last_step(d) == 8, f'resume after the failure: exit code {got}', output)
+
+
 # ---- 2. command line and input path -----------------------------------------------------
 
 def expect_no_run(args, regex):
@@ -590,7 +642,7 @@ def main():
                 RESULTS.append((name, ok, detail))
                 print(f'ok    {name} {detail}' if ok else f'FAIL  {name}: {detail}', flush=True)
     finally:
-        shutil.rmtree(WORK, ignore_errors=True)
+        (print(WORK) if os.environ.get("KEEP") else shutil.rmtree(WORK, ignore_errors=True))
     passed = sum(1 for _, ok, _ in RESULTS if ok)
     failed = len(RESULTS) - passed
     print(f'time: {time.time() - start:.1f} s')
