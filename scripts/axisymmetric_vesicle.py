@@ -13,7 +13,8 @@ Integrals by Gauss-Legendre quadrature in t (exact to round-off for these smooth
 Usage:
   axisymmetric_vesicle.py prolate V [--modes N]   minimal energy of a prolate of reduced volume V
   axisymmetric_vesicle.py ellipsoid A B           energy of the spheroid with semi-axes A (axis), B, B
-  axisymmetric_vesicle.py test                    self-tests (sphere: 1; spheroid against this code)"""
+  axisymmetric_vesicle.py test                    self-tests (sphere: 1; spheroid against this code;
+                                                  the prolate branch against Seifert-Berndl-Lipowsky)"""
 import sys
 
 import numpy as np
@@ -83,6 +84,12 @@ def prolate(v, modes=10):
     return energy / (8 * np.pi), reduced(area, volume), result.success
 
 
+# (v, F / (8 pi kappa)) of the prolate branch, H0 = 0, read from Fig. 8 of Seifert, Berndl and
+# Lipowsky (1991) (the digitization in github.com/cselab/corpuscles,
+# example/min/data/1991_Seifert_et_al_PhysRevA/fig8_a.dat, linearly interpolated).
+SBL_PROLATE = [(0.95, 1.100), (0.90, 1.192), (0.85, 1.286), (0.80, 1.387), (0.75, 1.504), (0.70, 1.646)]
+
+
 def test():
     ok = True
     e, v = spheroid(1, 1)
@@ -99,6 +106,12 @@ def test():
     energies = [prolate(0.9, modes)[0] for modes in (8, 12)]
     ok &= abs(energies[0] - energies[1]) < 1e-6 and abs(energies[1] - 1.189644) < 1e-5
     print(f"prolate at v = 0.9: {energies[1]:.7f} (8 modes: {energies[0]:.7f})")
+    # The prolate branch of Seifert, Berndl and Lipowsky, Phys. Rev. A 44, 1182 (1991), Fig. 8,
+    # read from the figure (digitized points, interpolated; about +-0.005): SBL_PROLATE.
+    for v, published in SBL_PROLATE:
+        e_min = prolate(v)[0]
+        ok &= abs(e_min - published) < 0.01
+        print(f"prolate at v = {v}: {e_min:.4f}, Seifert-Berndl-Lipowsky Fig. 8: {published:.3f}")
     return ok
 
 

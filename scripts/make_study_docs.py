@@ -66,7 +66,35 @@ def branch_section(studies):
             'radius exceeds 4 kappa / (sigma xi); [experiments.md](experiments.md)) and the flat-start bracket '
             '917-944 by t = 2.5 above, which lies between the crossing and the upper turning point. The plateau '
             'criterion stops some runs after little time (the state still creeps), so the turning points are '
-            'brackets at this tolerance; finer meshes and end-time dependence are not yet followed.\n'] + table + ['']
+            'brackets at this tolerance; finer meshes and end-time dependence are not yet followed.\n'] + table + [
+            '', adaptive_branch_paragraph(studies), '']
+
+
+def adaptive_branch_paragraph(studies):
+    """The paragraph after the 32 x 32 branch table: a pointer to docs/branches.md (make_branch_docs.py), with
+    the crossing and turning points of the branches followed with one level of local refinement when both
+    branch.json files are there and complete."""
+    from membrane_workflow.continuation import crossing, turning_point
+    text = ('[branches.md](branches.md) follows the same two branches with one level of local refinement at the '
+            'interface (`--set "Mesh/Maximum refinement level=1"`, the setting that reproduces uniform 64 x 64) and '
+            'plots both branches on both meshes ([figure](images/studies/branches.png)), with the neck ratio of '
+            'every state.')
+    paths = [os.path.join(studies, 'branches-adaptive1', d, 'branch.json') for d in ('down', 'up')]
+    branches = [json.load(open(p)) for p in paths if os.path.exists(p)]
+    if len(branches) == 2 and all(b.get('error') is None for b in branches):
+        cross = crossing(*branches)
+        t_down, t_up = (turning_point(b) for b in branches)
+        if cross is not None:
+            text += (f' There the energies cross at sigma = {cross:.0f}, the critical line tension to quote for the '
+                     '7.3 setup')
+            ends = [f'{n} branch ends in [{min(t):g}, {max(t):g}]' for n, t in
+                    (('the protruding', t_down), ('the flat-start', t_up)) if t]
+            text += (' (' + ', '.join(ends) + ').') if ends else '.'
+        else:
+            text += ' There the energies do not cross at a value both branches hold.'
+    else:
+        text += ' The branches with local refinement are not complete (see there).'
+    return text
 
 
 lines = ['# Parameter studies: budding time and critical line tension\n',
