@@ -4,7 +4,8 @@ and one of the closed vesicles, made from the runs of scripts/run_experiments.sh
 run coloured by phi, rendered with VTK (scripts/render_surface.py); energy panels come from
 the statistics.
 
-Usage: make_gallery.py [results-dir] [docs-dir]"""
+Usage: make_gallery.py [results-dir] [docs-dir]
+A figure whose runs are not all in results-dir keeps its section (and picture) of the existing page."""
 import os
 import sys
 
@@ -59,11 +60,34 @@ lines = ['# Gallery: the paper\'s figures 7.1-7.4 and closed vesicles\n',
          '[experiments.md](experiments.md)); red is phase A (phi = +1), blue phase B. To regenerate all:\n',
          '```sh\nscripts/run_experiments.sh            # the runs, into results/ (~35 min)',
          'scripts/make_gallery.py results docs   # this page\n```\n']
+
+
+def previous_sections(path):
+    """{heading: text} of the '## ' sections of an existing gallery page, kept for figures whose
+    runs are not in results/ (so that one figure can be regenerated from its own runs)."""
+    sections, heading = {}, None
+    if os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                if line.startswith('## '):
+                    heading = line[3:].strip()
+                    sections[heading] = ''
+                if heading is not None:
+                    sections[heading] += line
+    return sections
+
+
+kept = previous_sections(os.path.join(docs, 'gallery.md'))
 for figure, caption, panels in FIGURES:
     runs = sorted({p[0] for p in panels if p[0] != 'energy'} |
                   {r for p in panels if p[0] == 'energy' for r in p[1]})
+    heading = f'Fig. {figure}' if figure[0].isdigit() else figure
     if not all(os.path.exists(os.path.join(results, r, 'surface.pvd')) for r in runs):
-        print(f'skipping {figure}: missing runs in {results}')
+        if heading in kept:
+            print(f'{heading}: missing runs in {results}, the previous section and picture are kept')
+            lines.append(kept[heading].rstrip('\n') + '\n')
+        else:
+            print(f'skipping {figure}: missing runs in {results}')
         continue
     columns = len(panels) if len(panels) <= 4 else 4
     rows = (len(panels) + columns - 1) // columns
@@ -103,7 +127,6 @@ for figure, caption, panels in FIGURES:
                  ticks=np.linspace(-1, 1, 5))
     fig.tight_layout()
     paper_figure = figure[0].isdigit()
-    heading = f'Fig. {figure}' if paper_figure else figure
     name = f'fig{figure}.png' if paper_figure else figure.lower().replace(' ', '-') + '.png'
     fig.savefig(os.path.join(images, name + '.partial.png'))
     plt.close(fig)
