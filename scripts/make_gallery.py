@@ -47,9 +47,10 @@ FIGURES = [
       ('7.4C-sigma630', None, 'C: sigma 630', 15), ('7.4C-sigma1000', None, "C': sigma 1000", 10),
       ('7.4D-small-domain', None, 'D: small domain', 15), ('7.4D-sigma1000', None, "D': small domain, sigma 1000", 15), ('7.4E-opposite-side', None, 'E: H0_A = +5', 10)]),
     ('Closed vesicles', 'Beyond the paper ([vesicles.md](vesicles.md)): a homogeneous vesicle relaxed to the prolate '
-     'equilibrium at reduced volume 0.9 (A); a cap domain at the tip of a prolate vesicle of fixed volume '
-     '(B) pulled out by its line tension (C); a random mixture with H0_A = -2 (D) sorted into outward-bulging '
-     'phase-A domains (E); the energies of both phase-field runs decay (F).',
+     'equilibrium at reduced volume 0.9 (A); a cap domain at the tip of a prolate vesicle (B), deflated to '
+     'v = 0.85, pulled out by its line tension (C); a random mixture with H0_A = -2 (D) sorted into '
+     'outward-bulging phase-A domains (E); the energies of both phase-field runs decay (F; for the deflated '
+     'vesicle F less the work p dV of the volume target).',
      [('vesicle-prolate', None, 'A: prolate, v = 0.9', 20), ('vesicle-domain-budding', 0.0, 'B: cap, t = 0', 20),
       ('vesicle-domain-budding', None, 'C: cap, end', 20), ('vesicle-sorting', 0.0, 'D: mixture, t = 0', 20),
       ('vesicle-sorting', None, 'E: sorted, end', 20), ('energy', ['vesicle-domain-budding', 'vesicle-sorting'])]),
@@ -105,7 +106,11 @@ for figure, caption, panels in FIGURES:
         if panel[0] == 'energy':
             for run in panel[1]:
                 s = load_statistics(os.path.join(results, run))
-                ax.plot(s['time'], s['energy'], label=run)
+                # a deflating vesicle: the work p dV of the volume target is taken out (the
+                # functional the flow decreases)
+                work = 'pressure_work' in s and np.abs(s['pressure_work']).max() > 0
+                ax.plot(s['time'], s['energy'] - (s['pressure_work'] if work else 0),
+                        label=run + (' (F - work p dV)' if work else ''))
             ax.set(xlabel='t', ylabel='free energy F', title=f'{chr(65 + k)}: energy')
             ax.set_yscale('log')
             ax.legend(fontsize=7)
