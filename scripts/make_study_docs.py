@@ -72,29 +72,27 @@ def branch_section(studies):
 
 def adaptive_branch_paragraph(studies):
     """The paragraph after the 32 x 32 branch table: a pointer to docs/branches.md (make_branch_docs.py), with
-    the crossing and turning points of the branches followed with one level of local refinement when both
-    branch.json files are there and complete."""
+    the crossing and turning points of the branches followed with one level of local refinement (its main
+    follows and the follows that fill in values between them), when both branches are there."""
+    from make_branch_docs import load_mesh
     from membrane_workflow.continuation import crossing, turning_point
     text = ('[branches.md](branches.md) follows the same two branches with one level of local refinement at the '
-            'interface (`--set "Mesh/Maximum refinement level=1"`, the setting that reproduces uniform 64 x 64) and '
-            'plots both branches on both meshes ([figure](images/studies/branches.png)), with the neck ratio of '
-            'every state.')
-    paths = [os.path.join(studies, 'branches-adaptive1', d, 'branch.json') for d in ('down', 'up')]
-    branches = [json.load(open(p)) for p in paths if os.path.exists(p)]
-    if len(branches) == 2 and all(b.get('error') is None for b in branches):
-        cross = crossing(*branches)
-        t_down, t_up = (turning_point(b) for b in branches)
-        if cross is not None:
-            text += (f' There the energies cross at sigma = {cross:.0f}, the critical line tension to quote for the '
-                     '7.3 setup')
-            ends = [f'{n} branch ends in [{min(t):g}, {max(t):g}]' for n, t in
-                    (('the protruding', t_down), ('the flat-start', t_up)) if t]
-            text += (' (' + ', '.join(ends) + ').') if ends else '.'
-        else:
-            text += ' There the energies do not cross at a value both branches hold.'
-    else:
-        text += ' The branches with local refinement are not complete (see there).'
-    return text
+            'interface (`--set "Mesh/Maximum refinement level=1"`, the setting that reproduces uniform 64 x 64), with '
+            'further values between its turning points, and plots both branches on both meshes '
+            '([figure](images/studies/branches.png)), with the neck ratio of every state.')
+    branches = load_mesh(studies, 'branches-adaptive1')
+    if len(branches) < 2:
+        return text + ' The branches with local refinement are not complete (see there).'
+    cross = crossing(branches['down'], branches['up'])
+    if cross is None:
+        return text + ' There the energies do not cross at a value both branches hold.'
+    ends = [f'{n} branch ends in [{min(t):g}, {max(t):g}]' for n, t in
+            (('the protruding', turning_point(branches['down'])), ('the flat-start', turning_point(branches['up'])))
+            if t]
+    incomplete = any(b['incomplete'] for b in branches.values())
+    return (text + f' There the energies cross at sigma = {cross:.0f}' + (' (' + ', '.join(ends) + ')' if ends else '') +
+            ': the critical line tension to quote for the 7.3 setup' +
+            (' (some of its follows are incomplete).' if incomplete else '.'))
 
 
 lines = ['# Parameter studies: budding time and critical line tension\n',
