@@ -47,8 +47,8 @@ FIGURES = [
       ('7.4C-sigma630', None, 'C: sigma 630', 15), ('7.4C-sigma1000', None, "C': sigma 1000", 10),
       ('7.4D-small-domain', None, 'D: small domain', 15), ('7.4D-sigma1000', None, "D': small domain, sigma 1000", 15), ('7.4E-opposite-side', None, 'E: H0_A = +5', 10)]),
     ('Closed vesicles', 'Beyond the paper ([vesicles.md](vesicles.md)): a homogeneous vesicle relaxed to the prolate '
-     'equilibrium at reduced volume 0.9 (A); a cap domain at the tip of a prolate vesicle (B), deflated to '
-     'v = 0.85, pulled out by its line tension (C); a random mixture with H0_A = -2 (D) sorted into '
+     'equilibrium at reduced volume 0.9 (A); a cap domain of 30 % of the area at the tip of a prolate vesicle '
+     '(B) that buds out on a neck as the vesicle is deflated to v = 0.7 (C); a random mixture with H0_A = -2 (D) sorted into '
      'outward-bulging phase-A domains (E); the energies of both phase-field runs decay (F; for the deflated '
      'vesicle F less the work p dV of the volume target).',
      [('vesicle-prolate', None, 'A: prolate, v = 0.9', 20), ('vesicle-domain-budding', 0.0, 'B: cap, t = 0', 20),
