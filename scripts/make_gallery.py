@@ -108,7 +108,7 @@ for figure, caption, panels in FIGURES:
                 s = load_statistics(os.path.join(results, run))
                 # a deflating vesicle: the work p dV of the volume target is taken out (the
                 # functional the flow decreases)
-                work = 'pressure_work' in s and np.abs(s['pressure_work']).max() > 0
+                work = 'pressure_work' in s and np.abs(s['pressure_work']).max() > 1e-6 * np.abs(s['energy']).max()
                 ax.plot(s['time'], s['energy'] - (s['pressure_work'] if work else 0),
                         label=run + (' (F - work p dV)' if work else ''))
             ax.set(xlabel='t', ylabel='free energy F', title=f'{chr(65 + k)}: energy')
