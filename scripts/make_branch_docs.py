@@ -249,8 +249,11 @@ def plot(results, path):
 
 def mesh_section(directory, level, label, branches, cross):
     follows = [f for b in branches.values() for f in b['follows']]
+    # The uniform-mesh commands are those of studies.md, whose shell blocks the docs test runs
+    # already; here they are a plain listing.
+    fence = 'text' if level == 0 else 'sh'
     lines = [f'## {label[0].upper() + label[1:]} (`Mesh/Maximum refinement level={level}`)\n',
-             '```sh\n' + '\n'.join(command(f) for f in follows) +
+             f'```{fence}\n' + '\n'.join(command(f) for f in follows) +
              (f'\nscripts/continuation.py compare results/studies/{directory}/down results/studies/{directory}/up'
               if len(branches) == 2 else '') + '\n```\n']
     if any('fine' in f['directory'] for f in follows):
