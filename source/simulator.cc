@@ -22,6 +22,20 @@ namespace Membrane
 {
   using namespace dealii;
 
+  std::string rejection_kind(const std::string &why)
+  {
+    // The phrases of Simulator::try_step's messages; what is left are the non-finite values.
+    static const std::array<std::pair<const char *, const char *>, 5> phrases = {{{"energy would rise", "energy_rise"},
+                                                                                  {"local error", "local_error"},
+                                                                                  {"would move", "large_move"},
+                                                                                  {"degenerated", "degenerate_cell"},
+                                                                                  {"linear solve failed", "solver_failure"}}};
+    for (const auto &[phrase, kind] : phrases)
+      if (why.find(phrase) != std::string::npos)
+        return kind;
+    return "non_finite";
+  }
+
   std::string Simulator::format(const double value)
   {
     std::ostringstream out;
@@ -120,6 +134,9 @@ namespace Membrane
     step               = static_cast<unsigned int>(scalars.at("step"));
     rejected_steps     = static_cast<unsigned int>(scalars.at("rejected_steps"));
     grid_control_skipped = static_cast<unsigned int>(scalars.at("grid_control_skipped"));
+    for (const char *kind : rejection_kinds) // absent in checkpoints written before the count by kind
+      if (scalars.count(std::string("rejected_") + kind))
+        rejections[kind] = static_cast<unsigned int>(scalars.at(std::string("rejected_") + kind));
     initial_area       = scalars.at("initial_area");
     initial_mass       = scalars.at("initial_mass");
     if (scalars.count("initial_volume"))
@@ -276,6 +293,7 @@ namespace Membrane
     if (!why.empty())
       {
         ++rejected_steps;
+        ++rejections[rejection_kind(why)];
         if (!step_control.reject(trial, rejection_factor))
           return stop("step failed at t = " + format(time) + ": " + why +
                         (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>" + curvature_resolution_note()

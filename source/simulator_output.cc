@@ -93,8 +93,7 @@ namespace Membrane
   void Simulator::write_checkpoint() const
   {
     TimerOutput::Scope scope(timer, "checkpoint");
-    save_checkpoint(parameters.output_directory + "/checkpoint.txt", surface, phi, reference_areas,
-                    {{"time", time},
+    std::map<std::string, double> scalars = {{"time", time},
                      {"tau", step_control.tau()},
                      {"step", step},
                      {"rejected_steps", rejected_steps},
@@ -108,7 +107,10 @@ namespace Membrane
                      {"adaptation_energy_jump", adaptation_energy_jump},
                      {"initial_volume", initial_volume},
                      {"volume_pressure", volume_pressure},
-                     {"pressure_work", pressure_work}},
+                     {"pressure_work", pressure_work}};
+    for (const auto &[kind, count] : rejections)
+      scalars["rejected_" + kind] = count;
+    save_checkpoint(parameters.output_directory + "/checkpoint.txt", surface, phi, reference_areas, scalars,
                     stats.to_text(), options.parameter_text);
   }
 
@@ -140,6 +142,12 @@ namespace Membrane
   {
     if (Utilities::MPI::this_mpi_process(communicator) != 0)
       return;
+    // {"energy_rise": n, ...}: every kind, 0 included, on one line.
+    std::string rejection_counts = "{";
+    for (const char *kind : rejection_kinds)
+      rejection_counts += (rejection_counts.size() > 1 ? ", " : "") + json_string(kind) + ": " +
+                          std::to_string(rejections.count(kind) ? rejections.at(kind) : 0U);
+    rejection_counts += "}";
     JsonObject summary;
     summary.add("code_version", code_version())
       .add("stop_reason", result.stop_reason)
@@ -147,6 +155,7 @@ namespace Membrane
       .add("outcome", result.outcome)
       .add("steps", step)
       .add("rejected_steps", rejected_steps)
+      .add_raw("rejections", rejection_counts)
       .add("time", time)
       .add("wall_seconds", wall_seconds)
       .add("grid_control_refused_fraction", step > 0 ? double(grid_control_skipped) / step : 0.0);

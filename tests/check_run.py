@@ -55,6 +55,11 @@ if args.direction is not None:
 if args.min_rejected is not None:
     check(summary["rejected_steps"] >= args.min_rejected,
           f"{summary['rejected_steps']} rejected steps (at least {args.min_rejected} expected)")
+# Every rejected step is counted under one reason.
+kinds = summary.get("rejections", {})
+check(set(kinds) == {"energy_rise", "local_error", "large_move", "degenerate_cell", "solver_failure", "non_finite"}
+      and sum(kinds.values()) == summary["rejected_steps"],
+      f"rejections by reason {kinds} add up to the {summary['rejected_steps']} rejected steps")
 if args.stop_reason is not None:
     import re
     check(re.search(args.stop_reason, summary["stop_reason"]) is not None,

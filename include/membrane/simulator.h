@@ -33,7 +33,9 @@
 #include <deal.II/base/conditional_ostream.h>
 #include <deal.II/base/timer.h>
 
+#include <array>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -54,6 +56,12 @@ namespace Membrane
     bool        failed = false; ///< stopped because the scheme could not continue (not a physical stop)
     std::string outcome;        ///< "flat", "incomplete bud" or "complete bud"
   };
+
+  /// The reasons a trial step is rejected, as the keys of summary.json's "rejections".
+  inline constexpr std::array<const char *, 6> rejection_kinds = {
+    {"energy_rise", "local_error", "large_move", "degenerate_cell", "solver_failure", "non_finite"}};
+  /// The kind (one of rejection_kinds) of a rejection message of the time step.
+  std::string rejection_kind(const std::string &why);
 
   class Simulator
   {
@@ -192,6 +200,8 @@ namespace Membrane
     TimeStepController step_control;
     double       time = 0, initial_mass = 0, initial_area = 0, next_output_time = 0;
     unsigned int step = 0, rejected_steps = 0, solver_iterations = 0, grid_control_skipped = 0;
+    /// Rejected steps by kind (rejection_kinds), over the whole run (restored on resume).
+    std::map<std::string, unsigned int> rejections;
     /// Observables of the last accepted step, for the statistics.
     double max_increment = 0, remap_correction = 0, cell_quality = 1, area_error = 0, shape_mass_correction = 0;
     /// Closed surfaces: V_0, the volume pressure p of the last step (step and projections),
