@@ -2,7 +2,10 @@
 """Write docs/branches.md and docs/images/studies/branches.png: both branches of the 7.3 budding
 setup in line tension sigma, on the uniform 32 x 32 mesh and with one level of local refinement
 at the interface (the setting that reproduces uniform 64 x 64, docs/mesh-convergence.md), from
-the runs of scripts/continuation.py follow (the commands are in the page).
+the runs of scripts/continuation.py follow (the commands are in the page); and
+docs/branches-small-domain.md with docs/images/studies/branches-small-domain.png, the same for the
+smaller domain of 7.4 D (<studies>/branches-7.4D-adaptive1) against the 7.3 result. Each page is
+written when its runs are present.
 
 Usage: make_branch_docs.py [results/studies] [docs]
 
@@ -20,6 +23,7 @@ turning_point() of membrane_workflow/continuation.py on [last value on the branc
 off it beyond], and the energy crossing is crossing() of the two merged branches, as
 continuation.py compare computes them."""
 import json
+import math
 import os
 import re
 import sys
@@ -28,13 +32,20 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from continuation import classifier  # noqa: E402
 from membrane_workflow.continuation import crossing, follow_branch, turning_point  # noqa: E402
+from membrane_workflow.statistics import load_statistics  # noqa: E402
 
 CLASSIFY = 'protrusion:0.95'
 MESHES = [  # result directory, refinement level, label, colour in the figure
     ('branches-32', 0, 'uniform 32 x 32', 'tab:blue'),
     ('branches-adaptive1', 1, 'one level of local refinement', 'tab:red'),
 ]
-SHORT = {'uniform 32 x 32': '32 x 32', 'one level of local refinement': 'level 1'}  # labels of the bottom panel
+SHORT = {'uniform 32 x 32': '32 x 32', 'one level of local refinement': 'level 1',  # labels of the bottom panel
+         '7.4 D, one level of local refinement': '7.4 D'}
+# The domain-size analysis (paper 7.4 D: integral phi ds = -0.95 against -0.85 of 7.3), on the mesh
+# setting of the 7.3 number to quote; its page is docs/branches-small-domain.md.
+SMALL_DOMAIN = ('branches-7.4D-adaptive1', 1, '7.4 D, one level of local refinement', 'tab:green')
+# The 7.3 result with one level of refinement that the smaller domain is compared with (docs/branches.md).
+REFERENCE_73 = {'cross': 692, 'down': (650, 675), 'up': (725, 750), 'domain_area': 0.21}
 DIRECTIONS = {'down': 'the protruding branch, followed down', 'up': 'the flat-start branch, followed up'}
 SHARP_INTERFACE = 770  # Lipowsky's estimate, quoted in docs/studies.md and docs/experiments.md
 COMPLETE_NECK = 0.4    # neck_ratio below which the simulator calls a bud complete
@@ -166,7 +177,7 @@ def energy_difference(branches):
     return sorted((p['value'], p['energy'] - up[p['value']]) for p in branches['down']['points'] if p['value'] in up)
 
 
-def plot(results, path):
+def plot(results, path, title='7.3 setup: both branches in the line tension', sharp=SHARP_INTERFACE):
     """Top: energy of both branches against sigma; middle: their difference where both exist (zoomed on the
     bistable range); bottom: the turning-point brackets and the crossing of each mesh on the same axis."""
     import matplotlib
@@ -178,7 +189,7 @@ def plot(results, path):
     middle = figure.add_subplot(grid[1])
     bottom = figure.add_subplot(grid[2], sharex=middle)
     style = {'down': ('o', '-', 'protruding branch, followed down'), 'up': ('s', '--', 'flat-start branch, followed up')}
-    rows, labels, edges = 0, [], [SHARP_INTERFACE]
+    rows, labels, edges = 0, [], [sharp]
     for _, _, label, colour, branches, cross in reversed(results):
         for name in ('up', 'down'):
             b = branches.get(name)
@@ -225,15 +236,15 @@ def plot(results, path):
             for axis in (top, middle):
                 axis.axvline(cross, color=colour, linestyle=':', linewidth=1.5)
     for axis in (top, middle, bottom):
-        axis.axvline(SHARP_INTERFACE, color='gray', linestyle='-.', linewidth=1)
+        axis.axvline(sharp, color='gray', linestyle='-.', linewidth=1)
         axis.grid(alpha=0.3)
-    middle.text(SHARP_INTERFACE, 0.97, ' sharp-interface estimate', color='gray', fontsize=8, va='top',
+    middle.text(sharp, 0.97, ' sharp-interface estimate', color='gray', fontsize=8, va='top',
                 transform=middle.get_xaxis_transform())
     middle.axhline(0, color='black', linewidth=0.8)
     middle.set_xlim(min(edges) - 60, max(edges) + 110)
     top.set_ylabel('total energy')
     top.set_xlabel('line tension sigma')
-    top.set_title('7.3 setup: both branches in the line tension')
+    top.set_title(title)
     top.legend(fontsize=7.5, loc='lower right')
     middle.set_ylabel('E(protruding) - E(flat start)')
     middle.legend(fontsize=8, loc='lower left')
@@ -247,12 +258,13 @@ def plot(results, path):
     plt.close(figure)
 
 
-def mesh_section(directory, level, label, branches, cross):
+def mesh_section(directory, level, label, branches, cross, heading=None, fence=None):
     follows = [f for b in branches.values() for f in b['follows']]
     # The uniform-mesh commands are those of studies.md, whose shell blocks the docs test runs
     # already; here they are a plain listing.
-    fence = 'text' if level == 0 else 'sh'
-    lines = [f'## {label[0].upper() + label[1:]} (`Mesh/Maximum refinement level={level}`)\n',
+    fence = fence or ('text' if level == 0 else 'sh')
+    heading = heading or f'## {label[0].upper() + label[1:]} (`Mesh/Maximum refinement level={level}`)'
+    lines = [heading + '\n',
              f'```{fence}\n' + '\n'.join(command(f) for f in follows) +
              (f'\nscripts/continuation.py compare results/studies/{directory}/down results/studies/{directory}/up'
               if len(branches) == 2 else '') + '\n```\n']
@@ -345,7 +357,8 @@ def quote(summary):
     flat_start = ('Do not quote a flat-start bisection as the critical line tension: it is the line tension above '
                   'which a run from the initial state protrudes by a given end time, a kinetic number that moves with '
                   'the end time (on 32 x 32: 900-925 by t = 2.5, 875-900 by t = 5 and 10; with one level of '
-                  'refinement: 771-794 by t = 2.5; [studies.md](studies.md)).')
+                  'refinement: 775-800 by t = 2.5, 725-750 by t = 5, 700-725 by t = 10, approaching the crossing from '
+                  'above; [studies.md](studies.md)).')
     bisections = {'branches-32': (875, 925), 'branches-adaptive1': (771.1, 793.7)}  # from studies.md
     where = []
     for key, label in (('branches-32', 'on 32 x 32'), ('branches-adaptive1', 'with one level of refinement')):
@@ -355,10 +368,11 @@ def quote(summary):
             side = ('below' if bisections[key][1] <= lo else 'above' if bisections[key][0] >= hi else 'inside')
             where.append(f'{label} they lie {side} it, [{lo:g}, {hi:g}]')
     if where:
-        flat_start += (' It also depends on the path, against the turning bracket of the flat-start branch followed '
-                       'here: ' + ', '.join(where) + ' (a run from the initial state and a '
+        flat_start += (' By t = 2.5 it also depends on the path, against the turning bracket of the flat-start '
+                       'branch followed here: ' + ', '.join(where) + ' (a run from the initial state and a '
                        'state followed step by step in sigma, relaxing up to 3 time units at each value, reach or miss '
-                       'the protruding state differently).')
+                       'the protruding state differently; with one level of refinement a flat start at 725 protrudes '
+                       'at t = 6.35, so that branch\'s bracket is an upper bound at its plateau tolerance).')
     if fine and fine['cross'] is not None:
         text = (f"Quote **sigma_c = {fine['cross']:.0f}**, the energy crossing with one level of local refinement, as "
                 'the critical line tension of the 7.3 setup: it is the thermodynamic threshold (above it the '
@@ -405,10 +419,105 @@ def quote(summary):
     return lines
 
 
+def sharp_interface(domain_area, kappa=1.5, xi=0.03):
+    """Lipowsky's estimate of the line tension above which a spherical bud of a flat domain of this
+    area is the lower-energy state: 8 pi kappa = 2 pi r sigma xi, r = sqrt(A / pi) (docs/experiments.md)."""
+    return 4 * kappa / (xi * math.sqrt(domain_area / math.pi))
+
+
+def small_domain_page(studies, docs):
+    """docs/branches-small-domain.md and its figure: both branches of 7.4 D on the mesh setting of the
+    7.3 number to quote, against that number. False without data."""
+    directory, level, label, colour = SMALL_DOMAIN
+    branches = load_mesh(studies, directory)
+    if not branches:
+        print(f'skipping 7.4 D: no runs in {os.path.join(studies, directory)}')
+        return False
+    cross = crossing(branches['down'], branches['up']) if len(branches) == 2 else None
+    png = os.path.join(docs, 'images', 'studies', 'branches-small-domain.png')
+    # The area of the sorted flat domain: phase A of the first state of the flat-start branch.
+    first = (branches.get('up') or branches['down'])['points'][0]
+    area = load_statistics(os.path.dirname(first['state']))['domain_area'][-1]
+    estimate = sharp_interface(area)
+    turns = {n: turning_point(b) for n, b in branches.items()}
+    difference = energy_difference(branches)
+    # Without a sign change where both branches hold, the zero of the difference extrapolated
+    # linearly from the two lowest common values, when it shrinks towards them.
+    extrapolated = None
+    if cross is None and len(difference) >= 2:
+        (v0, d0), (v1, d1) = difference[:2]
+        if d0 * d1 > 0 and abs(d0) < abs(d1):
+            extrapolated = v0 - d0 * (v1 - v0) / (d1 - d0)
+    threshold = cross if cross is not None else extrapolated
+    plot([(directory, level, label, colour, branches, threshold)], png,
+         title='7.4 D (smaller domain): both branches in the line tension', sharp=estimate)
+    ref = REFERENCE_73
+    ref_estimate = sharp_interface(ref['domain_area'])
+
+    def bracket(t):
+        return f'[{min(t):g}, {max(t):g}]' if t else 'not reached'
+    lines = ['# Domain size: both branches of the 7.4 D setup\n',
+             'The paper\'s Fig. 7.4 D: a smaller domain (`integral phi ds = -0.95`, '
+             '[experiments/7.4D-small-domain.prm](../experiments/7.4D-small-domain.prm)) does not bud at a line '
+             'tension where the larger one of 7.3 / 7.4 C (`-0.85`) does. The same analysis as for 7.3 '
+             '([branches.md](branches.md)), shorter: both branches followed in sigma by `scripts/continuation.py` on '
+             'the mesh setting of the 7.3 number to quote (one level of local refinement at the interface), the '
+             'protruding branch down from sigma = 2000 and the flat-start branch up from 600, with the protrusion '
+             'class 0.95, the plateau tolerance 1e-3 per unit time and at most 3 time units per value. '
+             'This page is written by `scripts/make_branch_docs.py`.\n',
+             '![both branches of 7.4 D](images/studies/branches-small-domain.png)\n',
+             'Top: total energy at each sigma (circles, solid: the protruding branch followed down; squares, dashed: '
+             'the flat-start branch followed up; open markers: not at plateau; crosses: states that have left their '
+             'branch). Middle: the energy difference of the two branches; bottom: the turning-point brackets and the '
+             'crossing (star; extrapolated when the branches do not cross where both hold, see below). The '
+             'dash-dotted line is the sharp-interface estimate for this domain.\n',
+             '## Summary\n',
+             '| setup | domain area | energy crossing | protruding branch ends in | flat-start branch ends in | '
+             'sharp-interface estimate |',
+             '|---|---|---|---|---|---|',
+             f"| 7.3 (`-0.85`, [branches.md](branches.md)) | {ref['domain_area']:.2f} | {ref['cross']} | "
+             f"{bracket(ref['down'])} | {bracket(ref['up'])} | {ref_estimate:.0f} |",
+             f"| 7.4 D (`-0.95`) | {area:.3f} | " +
+             (f'{cross:.0f}' if cross is not None else f'about {extrapolated:.0f} (extrapolated)' if extrapolated
+              else 'not obtained') + ' | ' +
+             f"{bracket(turns.get('down'))} | {bracket(turns.get('up'))} | {estimate:.0f} |\n",
+             '"domain area": the area of phase A (phi > 0) of the sorted flat domain, the first state of the '
+             'flat-start branch; the sharp-interface estimate is `4 kappa / (xi r)` with `r = sqrt(A / pi)` '
+             '([experiments.md](experiments.md)).\n']
+    if extrapolated is not None:
+        listed = ', '.join(f'{v:g}: {d:+.3f}' for v, d in difference)
+        down = turns.get('down')
+        lines.append('The energies of the two branches do not cross where both hold: E(protruding) - E(flat start) at '
+                     f'sigma = {listed}. The difference shrinks towards the lowest common value, and extrapolated '
+                     f'linearly from {difference[0][0]:g} and {difference[1][0]:g} it vanishes at sigma = '
+                     f'{extrapolated:.0f}' + (f', at the end of the protruding branch ([{min(down):g}, {max(down):g}])'
+                                                if down else '') +
+                     ': for the smaller domain the protruding state ceases to exist about where it stops being the '
+                     'lower-energy one, so the crossing and that turning point agree within the spacing of the values '
+                     'followed.\n')
+    if threshold is not None:
+        shift = 100 * (threshold - ref['cross']) / ref['cross']
+        predicted = 100 * (estimate - ref_estimate) / ref_estimate
+        lines.append(f"The smaller domain needs a higher line tension to bud: its threshold, sigma_c = {threshold:.0f}, "
+                     f"lies {shift:+.0f} % above that of 7.3 ({ref['cross']}), where the sharp-interface theory, in "
+                     f"which the threshold scales as 1 / r, predicts {predicted:+.0f} %. Quote sigma_c = {threshold:.0f} "
+                     'for the 7.4 D setup, with its turning-point brackets. At the paper\'s sigma = 630 both domains '
+                     'lie below their thresholds (on the flat-start branch), so neither buds there with this energy; '
+                     'the paper\'s statement that the smaller domain stays unbudded where the larger one buds holds '
+                     f"between the two thresholds, {ref['cross']} < sigma < {threshold:.0f}.\n")
+    lines += mesh_section(directory, level, label, branches, cross,
+                          heading=f'## The runs (`Mesh/Maximum refinement level={level}`)', fence='text')
+    with open(os.path.join(docs, 'branches-small-domain.md'), 'w') as f:
+        f.write('\n'.join(lines) + '\n')
+    print(f"wrote {os.path.join(docs, 'branches-small-domain.md')} and {png}")
+    return True
+
+
 def main():
     studies = sys.argv[1] if len(sys.argv) > 1 else 'results/studies'
     docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
     images = os.path.join(docs, 'images', 'studies')
+    small = small_domain_page(studies, docs)
     results = []
     for directory, level, label, colour in MESHES:
         branches = load_mesh(studies, directory)
@@ -418,8 +527,8 @@ def main():
         cross = crossing(branches['down'], branches['up']) if len(branches) == 2 else None
         results.append((directory, level, label, colour, branches, cross))
     if not results:
-        print('no branch data: nothing written')
-        return 1
+        print('no branch data of 7.3: branches.md not written')
+        return 0 if small else 1
     png = os.path.join(images, 'branches.png')
     plot(results, png)
 
@@ -445,6 +554,8 @@ def main():
              '- the **flat-start threshold** of a bisection ([studies.md](studies.md)), where a run from the initial '
              'state protrudes by a given end time, is none of these: it depends on how long one waits, a kinetic, not '
              'an equilibrium, number.\n',
+             'The same analysis for the smaller domain of 7.4 D is in '
+             '[branches-small-domain.md](branches-small-domain.md).\n',
              'The runs use `--set "Mesh/Maximum refinement level=0"` (the paper\'s uniform 32 x 32 mesh) and `=1` '
              '(one level of local refinement at the interface, which reproduces the uniform 64 x 64 energy within '
              '0.1 % at sigma = 630 and 1000, [mesh-convergence.md](mesh-convergence.md)), one run at a time with '

@@ -41,14 +41,23 @@ def brackets(runs, end_times):
     return result
 
 
-def section(studies, end_times=(2.5, 5, 10)):
-    """Lines of docs/studies.md for results/studies/threshold-time (empty without results)."""
-    cases = os.path.join(studies, 'threshold-time', 'cases')
+# The studies of docs/studies.md: result directory (and sweep file) name, the mesh, its heading.
+STUDIES = {
+    'threshold-time': ('the uniform 32 x 32 mesh', '32 x 32'),
+    'threshold-time-adaptive1': ('one level of local refinement at the interface (the setting that reproduces '
+                                 'uniform 64 x 64)', 'one level of local refinement'),
+}
+
+
+def section(studies, end_times=(2.5, 5, 10), name='threshold-time'):
+    """Lines of docs/studies.md for results/studies/<name> (empty without results)."""
+    mesh, heading = STUDIES[name]
+    cases = os.path.join(studies, name, 'cases')
     if not os.path.isdir(cases):
         return []
     runs, rows = [], []
-    for name in sorted(os.listdir(cases)):
-        run = os.path.join(cases, name)
+    for case in sorted(os.listdir(cases)):
+        run = os.path.join(cases, case)
         if not os.path.exists(os.path.join(run, 'summary.json')):
             continue
         with open(os.path.join(run, 'case.json')) as f:
@@ -78,18 +87,21 @@ def section(studies, end_times=(2.5, 5, 10)):
     if previous is not None and found[last][:2] == found[previous][:2] and found[last][0] is not None:
         never = [(s['domain_protrusion'], sigma) for sigma, crossing, s in rows if math.isinf(crossing)]
         top = max(never) if never else None
+        necked = [sigma for sigma, _, s in rows if s['neck_ratio'] < 0.4]
         summary_lines.append(
             f'\nThe bracket no longer moves between t = {previous:g} and t = {last:g}'
             + (f': below it the protrusion levels off under 0.95 ({top[0]:.2f} at sigma = {top[1]:g} by '
                f't = {last:g}), so it brackets the long-time state, not a transient. The final protrusions rise '
-               'steadily with sigma (' + ', '.join(f"{s['domain_protrusion']:.2f}" for _, _, s in rows) +
-               f' from sigma = {rows[0][0]:g} to {rows[-1][0]:g}), with no jump at this spacing: on this mesh the '
-               '0.95 line is crossed by a continuous family of protruding states, none with a neck.'
+               'with sigma (' + ', '.join(f"{s['domain_protrusion']:.2f}" for _, _, s in rows) +
+               f' from sigma = {rows[0][0]:g} to {rows[-1][0]:g}); ' +
+               ('no final state has a neck (neck ratio below 0.4).' if not necked else
+                'a neck (neck ratio below 0.4) has formed at sigma = ' + ', '.join(f'{s:g}' for s in necked) + '.')
                if top else '.'))
-    return ['## The flat-start threshold against the end time (32 x 32)\n',
-            '```sh\nscripts/sweep.py experiments/studies/threshold-time.json --workers 2\n```\n',
-            'Flat starts of the 7.3 setup on the uniform 32 x 32 mesh, run to t = 10. The time at which the domain '
+    sweep = 'experiments/studies/' + name + '.json'
+    return [f'## The flat-start threshold against the end time ({heading})\n',
+            f'```sh\nscripts/sweep.py {sweep} --workers 2\n```\n',
+            f'Flat starts of the 7.3 setup on {mesh}, run to t = {end_times[-1]:g}. The time at which the domain '
             'first protrudes like a sphere of its area (protrusion 0.95, the threshold of the brackets above) grows '
             'as sigma falls, so the flat-start threshold depends on how long one waits:\n'] + summary_lines + [
-            '\nA run that stops before t = 10 ("stalled": the step control cannot lower the energy any more near '
-            'equilibrium) leaves its sigma undecided for later end times. Every run:\n'] + table + ['']
+            f'\nA run that stops before t = {end_times[-1]:g} ("stalled": the step control cannot lower the energy any '
+            'more near equilibrium) leaves its sigma undecided for later end times. Every run:\n'] + table + ['']
