@@ -13,7 +13,8 @@ command may use the results of an earlier one; the stand-in adds --overwrite, so
 that runs into a directory an earlier one wrote is not refused. A shell variable set by an
 assignment line (R=...) holds for the rest of its block. The Python module is importable as
 after the setup command (PYTHONPATH points at the build). Not run: ./scripts/setup.sh and ./scripts/test.sh (they install packages and run this suite).
-benchmarks/scaling.py runs with --sizes 16,32 in place of its documented sizes (REDUCED).
+benchmarks/scaling.py runs with --sizes 16,32 in place of its documented sizes, mesh_convergence.py
+with --levels 1, neck_study.py with --max-level 2 and the 4-rank sweep with 2 ranks (REDUCED).
 Placeholders the docs use are created first: my_run.prm (experiments/default.prm),
 my_sweep.json (two line tensions of 7.3) and hosts (an MPI host file for this machine).
 Usage: test_docs_commands.py <source dir> <membrane-flow> <bench_cahn_hilliard> [<filter>]"""
@@ -36,7 +37,12 @@ EXPECTED_CODES = {"scripts/critical_value.py": 1}
 MAX_STEPS = 3
 # The scaling benchmark's own meshes (up to 256 x 256: minutes and gigabytes per case even
 # for 3 steps) are replaced by the smallest sizes; its options and output are still run.
-REDUCED = [(re.compile(r"^(benchmarks/scaling\.py .*)--sizes \S+"), r"\1--sizes 16,32")]
+REDUCED = [(re.compile(r"^(benchmarks/scaling\.py .*)--sizes \S+"), r"\1--sizes 16,32"),
+           # The studies with the most cases run their smallest set: each case still runs, 3 steps.
+           (re.compile(r"^(scripts/mesh_convergence\.py .*)--levels 1,2,3"), r"\1--levels 1"),
+           (re.compile(r"^scripts/neck_study\.py$"), "scripts/neck_study.py --max-level 2"),
+           # 4 ranks on a 2-core machine spend most of their time waiting for each other.
+           (re.compile(r"^(scripts/sweep\.py .*)--ranks 4"), r"\1--ranks 2")]
 
 
 def commands(path):
