@@ -22,20 +22,6 @@ namespace Membrane
 {
   using namespace dealii;
 
-  std::string rejection_kind(const std::string &why)
-  {
-    // The phrases of Simulator::try_step's messages; what is left are the non-finite values.
-    static const std::array<std::pair<const char *, const char *>, 5> phrases = {{{"energy would rise", "energy_rise"},
-                                                                                  {"local error", "local_error"},
-                                                                                  {"would move", "large_move"},
-                                                                                  {"degenerated", "degenerate_cell"},
-                                                                                  {"linear solve failed", "solver_failure"}}};
-    for (const auto &[phrase, kind] : phrases)
-      if (why.find(phrase) != std::string::npos)
-        return kind;
-    return "non_finite";
-  }
-
   std::string Simulator::format(const double value)
   {
     std::ostringstream out;
@@ -293,9 +279,9 @@ namespace Membrane
     if (!why.empty())
       {
         ++rejected_steps;
-        ++rejections[rejection_kind(why)];
+        ++rejections[why.kind];
         if (!step_control.reject(trial, rejection_factor))
-          return stop("step failed at t = " + format(time) + ": " + why +
+          return stop("step failed at t = " + format(time) + ": " + why.message +
                         (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>" + curvature_resolution_note()
                                              : "; reduce <Time stepping/Time step> or set Adaptive = true") +
                         ". The last good state is kept",
@@ -306,7 +292,7 @@ namespace Membrane
             // approach to pinch-off (the neck is below what the mesh resolves).
             const bool budded = classify_outcome(bud, parameters.outcome, false) == "complete bud";
             return stop(std::string(budded ? "pinch-off approach" : "stalled") + " at t = " + format(time) +
-                          ": half of the last 20 steps were rejected (last: " + why +
+                          ": half of the last 20 steps were rejected (last: " + why.message +
                           ") at tau = " + format(step_control.tau()) + curvature_resolution_note() +
                           ". The last good state is kept",
                         !budded);

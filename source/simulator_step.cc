@@ -156,10 +156,10 @@ namespace Membrane
     const Material &material = parameters.material;
     const State     before   = save_state();
     const double    pressure_before = volume_pressure;
-    const auto      restore  = [&](const Rejection &why) {
+    const auto      restore  = [&](const char *kind, const std::string &message) {
       restore_state(before);
       volume_pressure = pressure_before;
-      return why;
+      return Rejection{kind, message};
     };
     grid_move_skipped = false;
     trial_end_time    = time + tau_trial;
@@ -171,7 +171,7 @@ namespace Membrane
         solver_iterations = cahn_hilliard.step(surface, geometry, material, parameters.cahn_hilliard,
                                                parameters.linear_solver, tau_trial, phi, phi_new, potential, &timer);
         if (!std::isfinite(phi_new.l2_norm()) || phi_new.linfty_norm() > 10)
-          return restore("phi became non-finite or |phi| > 10");
+          return restore("non_finite", "phi became non-finite or |phi| > 10");
         chemical_potential = potential;
         step_phi_change    = phi_new;
         {
@@ -188,7 +188,7 @@ namespace Membrane
           {
             const double volume_before = volume_term(tau_trial).active ? enclosed_volume(surface) : 0;
             if (!move_shape(tau_trial, phi_new))
-              return restore("the shape solve gave non-finite values");
+              return restore("non_finite", "the shape solve gave non-finite values");
             step_pressure_work = pressure_work_of_step(volume_before, pressure_before);
           }
         else
@@ -198,32 +198,32 @@ namespace Membrane
       }
     catch (const std::exception &)
       {
-        return restore("a linear solve failed");
+        return restore("solver_failure", "a linear solve failed");
       }
 
     if (!std::isfinite(energy.total()))
-      return restore("the energy became non-finite");
+      return restore("non_finite", "the energy became non-finite");
     if (parameters.evolve_shape && cell_quality < parameters.min_cell_quality)
-      return restore("a cell degenerated (corner sine " + format(cell_quality) + " < " +
+      return restore("degenerate_cell", "a cell degenerated (corner sine " + format(cell_quality) + " < " +
                      format(parameters.min_cell_quality) + ")");
     // A CFL-like bound on the motion: a semi-implicit step is stable at any tau, so a
     // tau far too large for the dynamics shows as a move of many cells, not as a blow-up.
     const double moved_cells = max_increment / reference_cell_size();
     if (parameters.evolve_shape && parameters.max_increment_cells > 0 && moved_cells > parameters.max_increment_cells)
-      return restore("a vertex would move " + format(moved_cells) + " cell sizes in one step (more than <Time "
+      return restore("large_move", "a vertex would move " + format(moved_cells) + " cell sizes in one step (more than <Time "
                      "stepping/Maximum increment> = " + format(parameters.max_increment_cells) +
                      "; 0 there: no bound)");
     // A moving volume target or a prescribed pressure does work p dV on the membrane:
     // F - integral p dV, not F, is what the constrained gradient flow decreases.
     const double rise = energy.total() - before.energy.total() - step_pressure_work;
     if (rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
-      return restore("the energy would rise by " + format(rise));
+      return restore("energy_rise", "the energy would rise by " + format(rise));
     step_error     = previous_tau > 0 ? local_error(tau_trial) : -1;
     error_estimate = step_control.controls_accuracy() && step_error >= 0 ? step_error / step_control.accuracy() : -1;
     if (error_estimate > 1)
       {
         rejection_factor = TimeStepController::shrink_factor(error_estimate);
-        return restore("the estimated local error is " + format(error_estimate) +
+        return restore("local_error", "the estimated local error is " + format(error_estimate) +
                        " x <Time stepping/Accuracy tolerance>");
       }
     return {};

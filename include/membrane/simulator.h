@@ -60,8 +60,6 @@ namespace Membrane
   /// The reasons a trial step is rejected, as the keys of summary.json's "rejections".
   inline constexpr std::array<const char *, 6> rejection_kinds = {
     {"energy_rise", "local_error", "large_move", "degenerate_cell", "solver_failure", "non_finite"}};
-  /// The kind (one of rejection_kinds) of a rejection message of the time step.
-  std::string rejection_kind(const std::string &why);
 
   class Simulator
   {
@@ -100,7 +98,12 @@ namespace Membrane
 
   private:
     /// Why a trial step was rejected (empty: accepted).
-    using Rejection = std::string;
+    struct Rejection
+    {
+      std::string kind;    ///< one of rejection_kinds
+      std::string message; ///< for the log and the stop reason
+      bool        empty() const { return kind.empty(); }
+    };
     /// A number with 4 significant digits, for messages.
     static std::string format(double value);
 
