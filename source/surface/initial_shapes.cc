@@ -5,6 +5,8 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace Membrane
@@ -80,13 +82,37 @@ namespace Membrane
         high *= 2;
         AssertThrow(high < 1e3, ExcMessage("Entry <Bump area>: target area not reachable"));
       }
-    // The area is monotone in the amplitude; bisection to round-off.
+    // The area is increasing and convex in the amplitude (sqrt(1 + a^2 |grad b|^2) at every
+    // quadrature point): regula falsi with the Illinois modification keeps the bracket and
+    // converges superlinearly, about 10 area evaluations to round-off where bisection needs
+    // 55 (each one interpolates the displacement and integrates the area).
+    double f_low = area_for(low) - target_area, f_high = area_for(high) - target_area;
+    double amplitude = high;
+    int    last_side = 0; // -1: the last update moved low, +1: high
     for (unsigned int it = 0; it < 200 && high - low > 1e-15 * high; ++it)
       {
-        const double mid = 0.5 * (low + high);
-        (area_for(mid) < target_area ? low : high) = mid;
+        amplitude = (low * f_high - high * f_low) / (f_high - f_low);
+        if (!(amplitude > low && amplitude < high))
+          amplitude = 0.5 * (low + high);
+        const double f = area_for(amplitude) - target_area;
+        if (std::abs(f) <= 4 * std::numeric_limits<double>::epsilon() * target_area)
+          break;
+        if (f < 0)
+          {
+            low = amplitude, f_low = f;
+            if (last_side == -1)
+              f_high *= 0.5;
+            last_side = -1;
+          }
+        else
+          {
+            high = amplitude, f_high = f;
+            if (last_side == +1)
+              f_low *= 0.5;
+            last_side = +1;
+          }
+        amplitude = 0.5 * (low + high);
       }
-    const double amplitude = 0.5 * (low + high);
     area_for(amplitude);
     return amplitude;
   }
