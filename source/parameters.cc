@@ -136,6 +136,11 @@ namespace Membrane
                         "Local area conservation against a reference: each step's area equation targets the "
                         "reference area of every vertex (set at the start, carried by grid control), so area errors "
                         "do not accumulate. false: the linearized constraint keeps the current areas (errors drift).");
+      prm.declare_entry("Area relaxation time", "1e-3", Patterns::Double(0, max_double),
+                        "T_a: a step of length tau restores the fraction min(1, tau / T_a) of the vertex area defect "
+                        "a_ref - a (the constraint drift relaxes at the rate 1/T_a). Steps longer than T_a restore it "
+                        "whole; shorter ones (a step cut short to land on the end time, a retried step) only in "
+                        "proportion, so that their energy change shrinks with tau. 0: every step restores it whole.");
       prm.declare_entry("Area projections", "1", Patterns::Integer(0, 5),
                         "Projections of each step's result back onto the local area constraint (same operator, one "
                         "back-substitution each); they remove the O(|grad W|^2) error of the linearized constraint "
@@ -147,7 +152,12 @@ namespace Membrane
       prm.declare_entry("Grid control weight", "0.1", Patterns::Double(0, 0.5),
                         "w: after each step every vertex moves by w times the tangential part of (mean of its edge "
                         "neighbours - itself), and phi is remapped (the paper's alpha = delta = 0.1; 0: no grid "
-                        "control, a purely Lagrangian mesh).");
+                        "control, a purely Lagrangian mesh). With a Grid control rate, the largest weight of a step.");
+      prm.declare_entry("Grid control rate", "10", Patterns::Double(0, max_double),
+                        "r, per unit time: the weight of a step of length tau is min(r tau, Grid control weight), so "
+                        "that the mesh is smoothed (and phi remapped) at a rate that does not depend on the number of "
+                        "steps, and results converge as tau -> 0 (10: the paper's 0.1 per step at tau = 1e-2). 0: the "
+                        "weight of every step is Grid control weight, whatever tau (the paper's rule).");
       prm.leave_subsection();
 
       prm.enter_subsection("Outcome");
@@ -287,8 +297,10 @@ namespace Membrane
     shape_options.pressure_stabilization = prm.get_double("Pressure stabilization");
     shape_options.correct_area           = prm.get_bool("Correct area");
     shape_options.area_corrections       = prm.get_integer("Area projections");
+    shape_options.area_relaxation_time   = prm.get_double("Area relaxation time");
     shape_options.correct_mass           = prm.get_bool("Correct mass");
     grid_control_weight                  = prm.get_double("Grid control weight");
+    grid_control_rate                    = prm.get_double("Grid control rate");
     prm.leave_subsection();
 
     prm.enter_subsection("Outcome");

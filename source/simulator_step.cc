@@ -26,22 +26,34 @@ namespace Membrane
     energy   = state.energy;
   }
 
-  Vector Simulator::area_defect() const
+  Vector Simulator::area_target(const double tau, const Vector &areas) const
   {
-    Vector defect = surface.scalar_space().make_owned();
+    // The step restores a fraction theta = min(1, tau / T_a) of the area defect a_ref - a^m
+    // (a Baumgarte-type relaxation of the constraint drift at the rate 1/T_a). Restoring it
+    // whole in every step would move the surface by an amount that does not shrink with tau,
+    // and so change the energy by about integral gamma (a_ref - a^m) even in the shortest
+    // step: a step cut short to land on the end time, or retried after a rejection, was then
+    // rejected at any tau and the run stalled.
+    Vector target = areas;
     if (parameters.shape_options.correct_area)
       {
-        defect = reference_areas;
-        defect -= vertex_areas(surface);
+        const double relaxation = parameters.shape_options.area_relaxation_time;
+        const double theta      = relaxation > 0 ? std::min(1.0, tau / relaxation) : 1.0;
+        target *= 1 - theta;
+        target.add(theta, reference_areas);
       }
-    return defect;
+    return target;
   }
 
   bool Simulator::move_shape(const double tau_trial, const Vector &phi_new)
   {
     const ShapeOptions &options = parameters.shape_options;
+    const Vector        areas_before = vertex_areas(surface);
+    const Vector        target       = area_target(tau_trial, areas_before);
+    Vector              defect_of_step = target;
+    defect_of_step -= areas_before;
     ShapeUpdate update = shape_solver.step(surface, geometry, parameters.material, options, parameters.linear_solver,
-                                           tau_trial, area_defect(), phi, chemical_potential, &timer,
+                                           tau_trial, defect_of_step, phi, chemical_potential, &timer,
                                            volume_term(tau_trial));
     Vector moved = surface.vector_space().make_owned();
     moved        = surface.displacement();
@@ -77,13 +89,13 @@ namespace Membrane
             const bool           volume_only = fixed_volume && k + 1 == projections;
             const Vector         areas  = vertex_areas(surface);
             const VolumeCoupling volume = volume_term(tau_trial);
-            if ((volume_only || max_relative_difference(areas, reference_areas) <= options.area_tolerance) &&
+            if ((volume_only || max_relative_difference(areas, target) <= options.area_tolerance) &&
                 (!fixed_volume || std::abs(volume.volume_defect) <= options.area_tolerance * initial_volume))
               break;
             Vector defect = surface.scalar_space().make_owned();
             if (!volume_only)
               {
-                defect = reference_areas;
+                defect = target;
                 defect -= areas;
               }
             const ShapeUpdate correction = shape_solver.correct_area(surface, defect, &timer, volume);
@@ -113,7 +125,7 @@ namespace Membrane
     return true;
   }
 
-  void Simulator::control_grid(const double energy_before)
+  void Simulator::control_grid(const double energy_before, const double tau)
   {
     const Material &material = parameters.material;
     const auto      update_geometry = [&]() {
@@ -132,7 +144,8 @@ namespace Membrane
     {
       TimerOutput::Scope scope(timer, "grid control");
       const Vector normal = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
-      const Vector shift  = grid_control_displacement(surface, normal, parameters.grid_control_weight);
+      const Vector shift  = grid_control_displacement(surface, normal,
+                                                      parameters.grid_control_weight_of_step(tau));
       const Vector ratio = area_ratio();
       remap_correction   = move_tangentially_and_remap(surface, shift, phi);
       // The reference area moves with the vertices, each keeping its relative error;
@@ -193,7 +206,7 @@ namespace Membrane
           }
         else
           phi = phi_new;
-        control_grid(before.energy.total() + step_pressure_work);
+        control_grid(before.energy.total() + step_pressure_work, tau_trial);
         cell_quality = min_corner_sine(surface, geometry.normal);
       }
     catch (const std::exception &)

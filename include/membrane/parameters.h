@@ -14,6 +14,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,7 +45,14 @@ namespace Membrane
     // Shape
     bool         evolve_shape = true;
     ShapeOptions shape_options;
-    double       grid_control_weight = 0.1;
+    double       grid_control_weight = 0.1; ///< per step; with a rate, the largest per step
+    double       grid_control_rate   = 10;  ///< per unit time (0: the weight per step, whatever tau)
+
+    /// The grid-control weight of a step of length tau (docs/model.md, grid control).
+    double grid_control_weight_of_step(const double tau) const
+    {
+      return grid_control_rate > 0 ? std::min(grid_control_weight, grid_control_rate * tau) : grid_control_weight;
+    }
     // Outcome
     OutcomeCriteria outcome;
     double          pinch_off_radius = 0.03;

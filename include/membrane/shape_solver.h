@@ -68,6 +68,7 @@ namespace Membrane
     bool   correct_area           = true;  ///< feed back the defect of the vertex areas
     unsigned int area_corrections = 1;     ///< projections per step onto the area constraint
     double area_tolerance         = 1e-12; ///< no projection below this relative defect
+    double area_relaxation_time   = 1e-3;  ///< T_a: a step restores min(1, tau / T_a) of the area defect (0: all)
     bool   correct_mass           = true;  ///< restore integral phi ds after the shape step
   };
 

@@ -130,9 +130,11 @@ namespace Membrane
     /// Shape step and its area projections; false if a solve gave non-finite values.
     bool      move_shape(double tau, const Vector &phi_new);
     /// Grid control of the Lagrangian state X~, kept if F^{m+1} <= F^m.
-    void      control_grid(double energy_before);
-    /// a_ref - a of the current surface (zero if the area is not corrected).
-    Vector    area_defect() const;
+    void      control_grid(double energy_before, double tau);
+    /// The vertex areas a step of length tau aims at from the current ones a^m:
+    /// a^m + theta (a_ref - a^m), theta = min(1, tau / <Shape/Area relaxation time>)
+    /// (a^m itself if the area is not corrected).
+    Vector    area_target(double tau, const Vector &areas) const;
     /// Mesh adaptation (simulator_adaptation.cc): mark, transfer the state, set up the
     /// solvers on the new mesh; false if no cell was flagged.
     /// Every Adaptivity interval accepted steps, and whenever the interface or the
