@@ -136,7 +136,7 @@ namespace Membrane
                         "Local area conservation against a reference: each step's area equation targets the "
                         "reference area of every vertex (set at the start, carried by grid control), so area errors "
                         "do not accumulate. false: the linearized constraint keeps the current areas (errors drift).");
-      prm.declare_entry("Area relaxation time", "1e-3", Patterns::Double(0, max_double),
+      prm.declare_entry("Area relaxation time", "1e-4", Patterns::Double(0, max_double),
                         "T_a: a step of length tau restores the fraction min(1, tau / T_a) of the vertex area defect "
                         "a_ref - a (the constraint drift relaxes at the rate 1/T_a). Steps longer than T_a restore it "
                         "whole; shorter ones (a step cut short to land on the end time, a retried step) only in "
@@ -153,11 +153,13 @@ namespace Membrane
                         "w: after each step every vertex moves by w times the tangential part of (mean of its edge "
                         "neighbours - itself), and phi is remapped (the paper's alpha = delta = 0.1; 0: no grid "
                         "control, a purely Lagrangian mesh). With a Grid control rate, the largest weight of a step.");
-      prm.declare_entry("Grid control rate", "10", Patterns::Double(0, max_double),
+      prm.declare_entry("Grid control rate", "0", Patterns::Double(0, max_double),
                         "r, per unit time: the weight of a step of length tau is min(r tau, Grid control weight), so "
                         "that the mesh is smoothed (and phi remapped) at a rate that does not depend on the number of "
-                        "steps, and results converge as tau -> 0 (10: the paper's 0.1 per step at tau = 1e-2). 0: the "
-                        "weight of every step is Grid control weight, whatever tau (the paper's rule).");
+                        "steps, and the state at a fixed time converges as tau -> 0 (10: the paper's 0.1 per step at "
+                        "tau = 1e-2; use it for time-step studies and with Accuracy tolerance). 0: the weight of every "
+                        "step is Grid control weight, whatever tau (the paper's rule; the state then depends on the "
+                        "number of steps, see docs/time-step-accuracy.md).");
       prm.leave_subsection();
 
       prm.enter_subsection("Outcome");

@@ -232,7 +232,7 @@ namespace Membrane
                   if (ci < spacedim)
                     b = -grad_psi[ci]; // -(grad_s X^m, grad_s psi_vec)
                   else if (ci == pressure_component)
-                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi); // + a_ref - a^m: add_area_defect()
+                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi); // + a_target - a^m: add_area_defect()
                   else if (ci == curvature_component)
                     b = tauL * (d.flux * grad_psi + d.source * psi);
                   else

@@ -233,6 +233,13 @@ namespace Membrane
       resume();
     segment_start_time = time;
     warn_if_unresolved();
+    // With a fixed grid-control weight per step the state at a given time depends on the
+    // number of steps, which accuracy control exists to choose (docs/time-step-accuracy.md).
+    if (parameters.accuracy_tolerance > 0 && parameters.evolve_shape && parameters.grid_control_weight > 0 &&
+        parameters.grid_control_rate == 0)
+      pcout << "Warning: with <Time stepping/Accuracy tolerance> > 0 and <Shape/Grid control rate> = 0 the mesh is "
+               "smoothed once per step whatever tau, so the result depends on the number of steps and does not "
+               "converge as the tolerance shrinks; set <Shape/Grid control rate> (e.g. 10).\n";
     write_run_info();
     pcout << (closed() ? "Vesicle (" + parameters.reference.type + "): " : std::string("Membrane patch: "))
           << triangulation.n_global_active_cells() << " cells, "

@@ -80,11 +80,13 @@ def make_copy():
 exec "{bench}" "$@" --benchmark_filter=/32$ --benchmark_min_time=0.01
 ''')
     os.chmod(bench_wrapper, 0o755)
-    # The stand-in for the program. A run with the same arguments and the same input file as
-    # an earlier command of this check (scripts/run_experiments.sh runs every experiment that
-    # docs/experiments.md then lists one by one) is not repeated while the directory it wrote
-    # still holds that run's summary.json: the program is deterministic, so a second run
-    # would check nothing new. Runs under mpirun are always made.
+    # The stand-in for the program. A run with the same arguments, input files and working
+    # directory as an earlier command of this check (scripts/run_experiments.sh runs every
+    # experiment that docs/experiments.md then lists one by one) is not repeated while the
+    # directory it wrote still holds that run's summary.json: the program is deterministic, so a
+    # second run would check nothing new; its output is printed again. Always run: runs under
+    # mpirun, resumed runs (their result depends on the checkpoint), and runs whose output goes
+    # to a file (the program then writes its log itself and must see that file as its stdout).
     memo = os.path.join(work, ".docs_runs")
     wrapper = os.path.join(work, "build", "membrane-flow")
     with open(wrapper, "w") as out:
@@ -93,13 +95,17 @@ for a in "$@"; do
   case "$a" in --print-parameters*|--help|--version) exec "{exe}" "$@";; esac
 done
 run=("{exe}" "$@" --overwrite --set "Time stepping/Maximum steps={MAX_STEPS}")
-[ -n "$OMPI_COMM_WORLD_SIZE" ] && exec "${{run[@]}}"
-input="${{@: -1}}"
-key=$( {{ pwd; printf '%s\\n' "$@" | grep -v -x -e --quiet -e --overwrite; [ -f "$input" ] && cat "$input"; }} | sha1sum | cut -c1-40)
+[ -n "$OMPI_COMM_WORLD_SIZE$PMI_RANK" ] && exec "${{run[@]}}"
+[ -f /proc/self/fd/1 ] && exec "${{run[@]}}"
+files=()
+for a in "$@"; do [ -f "$a" ] && files+=("$a"); done
+printf '%s\\n' "$@" | grep -q "Resume from" && exec "${{run[@]}}"
+[ ${{#files[@]}} -gt 0 ] && grep -Eq "Resume from *= *[^ ]" "${{files[@]}}" && exec "${{run[@]}}"
+key=$( {{ pwd; printf '%s\\n' "$@" | grep -v -x -e --quiet -e --overwrite; [ ${{#files[@]}} -gt 0 ] && cat "${{files[@]}}"; }} | sha1sum | cut -c1-40)
 if [ -f "{memo}/$key" ]; then
   dir=$(cat "{memo}/$key")
   if cmp -s "$dir/summary.json" "{memo}/$key.summary"; then
-    echo "(the same run as an earlier command of this check, whose results are in $dir: not repeated)"
+    cat "{memo}/$key.log"
     exit 0
   fi
 fi
@@ -107,13 +113,14 @@ log=$(mktemp)
 "${{run[@]}}" | tee "$log"
 code=${{PIPESTATUS[0]}}
 dir=$(sed -n 's/.*; output in \\(.*\\)\\/$/\\1/p' "$log" | head -n 1)
-rm -f "$log"
-[ -d "$dir" ] && dir=$(cd "$dir" && pwd)
+[ -d "$dir" ] && dir=$(cd -- "$dir" > /dev/null && pwd)
 if [ "$code" -eq 0 ] && [ -f "$dir/summary.json" ]; then
   mkdir -p "{memo}"
   echo "$dir" > "{memo}/$key"
   cp "$dir/summary.json" "{memo}/$key.summary"
+  cp "$log" "{memo}/$key.log"
 fi
+rm -f "$log"
 exit "$code"
 ''')
     os.chmod(wrapper, 0o755)

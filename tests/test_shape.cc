@@ -460,6 +460,7 @@ TEST(Shape, StateAtFixedTimeConvergesWithTimeStep)
     Simulator simulator(parameters, RunOptions{true, "", "test"});
     EXPECT_FALSE(simulator.run().failed);
     const Statistics &stats = simulator.statistics();
+    EXPECT_NEAR(stats.last("time"), 0.1, 1e-12); // compared at the same time
     std::cout << "tau " << tau << ", grid control rate " << rate << ": energy at t = 0.1 " << stats.last("energy")
               << ", vertex area error " << std::abs(stats.last("area_error")) << std::endl;
     return std::make_pair(stats.last("energy"), std::abs(stats.last("area_error")));

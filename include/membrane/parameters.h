@@ -46,7 +46,7 @@ namespace Membrane
     bool         evolve_shape = true;
     ShapeOptions shape_options;
     double       grid_control_weight = 0.1; ///< per step; with a rate, the largest per step
-    double       grid_control_rate   = 10;  ///< per unit time (0: the weight per step, whatever tau)
+    double       grid_control_rate   = 0;   ///< per unit time (0: the weight per step, whatever tau)
 
     /// The grid-control weight of a step of length tau (docs/model.md, grid control).
     double grid_control_weight_of_step(const double tau) const

@@ -68,7 +68,7 @@ namespace Membrane
     bool   correct_area           = true;  ///< feed back the defect of the vertex areas
     unsigned int area_corrections = 1;     ///< projections per step onto the area constraint
     double area_tolerance         = 1e-12; ///< no projection below this relative defect
-    double area_relaxation_time   = 1e-3;  ///< T_a: a step restores min(1, tau / T_a) of the area defect (0: all)
+    double area_relaxation_time   = 1e-4;  ///< T_a: a step restores min(1, tau / T_a) of the area defect (0: all)
     bool   correct_mass           = true;  ///< restore integral phi ds after the shape step
   };
 
@@ -97,16 +97,16 @@ namespace Membrane
     ShapeSolver(const Triangulation &triangulation, bool periodic);
     void setup();
 
-    /// One step; `area_defect` (owned, scalar space) is a_ref(psi_i) - a^m(psi_i) per
-    /// vertex (vertex_areas() of the reference minus that of Gamma^m; zero to keep the
-    /// current areas). `timer` (optional) gets "shape assembly" and "shape solve".
+    /// One step; `area_defect` (owned, scalar space) is a_target(psi_i) - a^m(psi_i) per
+    /// vertex (the areas the step aims at, Simulator::area_target(), minus those of
+    /// Gamma^m; zero to keep the current areas). `timer` (optional) gets "shape assembly" and "shape solve".
     ShapeUpdate step(const Surface &surface, const Geometry &geometry, const Material &material,
                      const ShapeOptions &options, const LinearSolverOptions &solver, double tau,
                      const Vector &area_defect, const Vector &phi_ghosted, const Vector &potential_ghosted,
                      dealii::TimerOutput *timer = nullptr, const VolumeCoupling &volume = {});
 
     /// The projection of the last step's result back onto the area constraint: the
-    /// last operator with the defect a_ref - a(X^m + W) as the only right-hand side.
+    /// last operator with the defect a_target - a(X^m + W) as the only right-hand side.
     /// Its result is added to that of step(); it costs one back-substitution.
     /// With a fixed volume the projection also restores V = V_target (`volume`'s defect
     /// is that of X^m + W); a prescribed pressure is not added again.

@@ -76,27 +76,31 @@ namespace Membrane
     AssertThrow(target_area >= flat_area,
                 ExcMessage("Entry <Bump area>: the target area " + std::to_string(target_area) +
                            " is below the flat patch area " + std::to_string(flat_area)));
-    double low = 0, high = 0.1;
-    while (area_for(high) < target_area)
+    if (target_area == flat_area)
+      return 0;
+    double low = 0, high = 0.1, f_low = flat_area - target_area, f_high = area_for(high) - target_area;
+    while (f_high < 0)
       {
+        low = high, f_low = f_high;
         high *= 2;
         AssertThrow(high < 1e3, ExcMessage("Entry <Bump area>: target area not reachable"));
+        f_high = area_for(high) - target_area;
       }
+    AssertThrow(std::isfinite(f_high), ExcMessage("Entry <Bump area>: the area of the bump is not finite"));
     // The area is increasing and convex in the amplitude (sqrt(1 + a^2 |grad b|^2) at every
     // quadrature point): regula falsi with the Illinois modification keeps the bracket and
     // converges superlinearly, about 10 area evaluations to round-off where bisection needs
     // 55 (each one interpolates the displacement and integrates the area).
-    double f_low = area_for(low) - target_area, f_high = area_for(high) - target_area;
     double amplitude = high;
     int    last_side = 0; // -1: the last update moved low, +1: high
-    for (unsigned int it = 0; it < 200 && high - low > 1e-15 * high; ++it)
+    for (unsigned int it = 0; it < 200 && f_high != 0 && high - low > 1e-15 * high; ++it)
       {
         amplitude = (low * f_high - high * f_low) / (f_high - f_low);
         if (!(amplitude > low && amplitude < high))
           amplitude = 0.5 * (low + high);
         const double f = area_for(amplitude) - target_area;
-        if (std::abs(f) <= 4 * std::numeric_limits<double>::epsilon() * target_area)
-          break;
+        if (std::abs(f) <= 1e-14 * target_area)
+          return amplitude; // the surface is at this amplitude
         if (f < 0)
           {
             low = amplitude, f_low = f;
