@@ -85,7 +85,7 @@ for tolerance, cap, rate in cases:
                      t_min=budding_time_of_run(out),
                      half=float(np.interp(0.5 * args.end_time, time, energy)) if time[-1] >= 0.5 * args.end_time
                      else math.nan,
-                     end=float(energy[-1]) if finished else math.nan))
+                     end=float(energy[-1]) if finished else math.nan, t_end=float(time[-1])))
 if args.no_docs:
     sys.exit(0)
 
@@ -109,8 +109,8 @@ lines = ['# Time-step convergence and accuracy-based time steps', '',
          f'The 7.3 setup at `sigma = 1500` on the uniform 32 x 32 mesh, run to t = {args.end_time:g}: tau '
          'capped at decreasing values (it grows by 1.25 after easy steps from 1e-4 up to the cap), and tau set '
          'by the accuracy tolerance (`Time stepping/Accuracy tolerance`, cap lifted to 0.1). Grid control moves '
-         'the mesh at a rate per unit time (`Shape/Grid control rate` = 10, the default); the last rows use the '
-         "paper's fixed weight per step (rate 0). Differences are relative to the smallest cap with the rate. "
+         'the mesh at a rate per unit time (`Shape/Grid control rate` = 10); the last rows use the '
+         "paper's fixed weight per step (rate 0, the default). Differences are relative to the smallest cap with the rate. "
          'Regenerate with `scripts/time_step_study.py` (about 30 minutes on one core).', '',
          f'| grid control | tolerance | maximum tau | steps | rejected | energy at t = {0.5 * args.end_time:g} | '
          f'energy at t = {args.end_time:g} | difference at t = {args.end_time:g} | T_min | difference in T_min | wall s |',
@@ -119,7 +119,7 @@ for r in rows:
     s = r['summary']
     lines.append(f"| {'rate 10' if r['rate'] else 'fixed 0.1 per step'} | {r['tolerance'] if r['tolerance'] else 'off'} | "
                  f"{r['cap']:g} | {s['steps']} | {s['rejected_steps']} | {r['half']:.5f} | "
-                 f"{'stopped: ' + s.get('stop_reason', '')[:40] if not r['finished'] else format(r['end'], '.5f')} | "
+                 f"{'stopped at t = ' + format(r['t_end'], '.4f') if not r['finished'] else format(r['end'], '.5f')} | "
                  f"{fmt_rel(r['end'], reference['end'])} | "
                  f"{'undefined' if r['t_min'] is None else format(r['t_min'], '.4f')} | "
                  f"{fmt_rel(r['t_min'], reference['t_min'])} | {s['wall_seconds']:.1f} |")
@@ -132,7 +132,10 @@ if len(ends) >= 3 and all(math.isfinite(e) for e in ends):
     orders = [math.log2(diffs[i] / diffs[i + 1]) for i in range(len(diffs) - 1) if diffs[i] > 0 and diffs[i + 1] > 0]
     text.append('With the rate, halving the cap changes the energy at the end time by ' +
                 ', '.join(f'{d / abs(ends[-1]):.1e}' for d in diffs) + ' (relative)' +
-                (', an observed order of ' + ', '.join(f'{o:.2f}' for o in orders) if orders else '') + '.')
+                (', an observed order of ' + ', '.join(f'{o:.2f}' for o in orders) if orders else '') +
+                '. The changes are small but shrink slowly: a part of the step that depends weakly on the number '
+                'of steps remains at this level (candidates: the restoration of the whole vertex-area defect in '
+                'every step longer than `Shape/Area relaxation time`, the mass correction by a constant).')
 fixed_ends = [r['end'] for r in fixed if math.isfinite(r['end'])]
 if len(fixed_ends) >= 2:
     diffs = [abs(fixed_ends[i] - fixed_ends[i + 1]) / abs(fixed_ends[-1]) for i in range(len(fixed_ends) - 1)]
@@ -140,21 +143,22 @@ if len(fixed_ends) >= 2:
                 ', '.join(f'{d:.1e}' for d in diffs) + ': the mesh is smoothed and phi remapped once per step, so '
                 'the state at a fixed time depends on the number of steps and does not settle as tau shrinks.')
 good = [r for r in controlled if r['finished'] and math.isfinite(reference['end'])]
-if good:
+coarsest = capped[0]
+if good and math.isfinite(coarsest['end']):
     text.append('With accuracy control the energy at the end time lies within ' +
                 ', '.join(f"{rel(r['end'], reference['end']):.1e} ({r['summary']['steps']} steps, tolerance "
-                          f"{r['tolerance']:g})" for r in good) + ' of the reference.')
-    # Fewest steps for a given accuracy: the capped runs against the controlled ones.
-    for r in good:
-        error = rel(r['end'], reference['end'])
-        cheaper = [c for c in capped[:-1] if math.isfinite(c['end']) and rel(c['end'], reference['end']) <= error]
-        if cheaper:
-            c = min(cheaper, key=lambda c: c['summary']['steps'])
-            text.append(f"At tolerance {r['tolerance']:g} ({error:.1e}, {r['summary']['steps']} steps) the cheapest "
-                        f"capped run as accurate takes {c['summary']['steps']} steps (cap {c['cap']:g}).")
-        else:
-            text.append(f"At tolerance {r['tolerance']:g} ({error:.1e}, {r['summary']['steps']} steps) no capped run "
-                        'but the reference is as accurate.')
+                          f"{r['tolerance']:g})" for r in good) + ' of the reference; the coarsest cap, '
+                f"{coarsest['cap']:g}, is within {rel(coarsest['end'], reference['end']):.1e} in "
+                f"{coarsest['summary']['steps']} steps.")
+stalled = [r for r in controlled if not r['finished']]
+for r in stalled:
+    text.append(f"At tolerance {r['tolerance']:g} the run stopped at t = {r['t_end']:.4f}: "
+                f"{r['summary'].get('stop_reason', '').split(';')[0]}.")
+text.append('The estimate (the change of the increments from one step to the next, in cells and in phi) does '
+            'not see the lag of the slow growth of the bud behind the frozen geometry, whose increments are small '
+            'and vary smoothly: the controlled runs take their largest steps there, and their error at t = 1 falls '
+            'only slowly as the tolerance shrinks. For accurate results cap tau (`Time stepping/Maximum time step`) '
+            'with grid control at a rate; the accuracy tolerance is off by default.')
 lines += [''] + text
 lines += ['', 'T_min is the first time the domain protrusion reaches 0.95 or, without that, the end of the '
           'last window in which the relative energy rate exceeds 1e-2 per unit time '
