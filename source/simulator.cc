@@ -163,18 +163,23 @@ namespace Membrane
     // The diffuse interface phi = tanh(3 s / (4 xi)) spans about 3.9 xi between
     // phi = -0.9 and 0.9; h <= 1.25 xi puts about 3 cells across it. h is
     // measured on the current surface, where the interface is (everywhere if none).
-    const double xi        = parameters.material.transition_length;
-    const double interface = interface_cell_size(surface, phi, parameters.adaptivity.interface_phi);
-    const double h         = interface > 0 ? interface : surface.max_cell_diameter() / std::sqrt(2.0);
+    // With local refinement, the size the interface cells reach as the interface sharpens
+    // (the smooth bump start is refined only then).
+    const AdaptivityOptions &adaptivity = parameters.adaptivity;
+    const double             xi         = parameters.material.transition_length;
+    const double             interface =
+      adaptivity.enabled() ? refined_interface_cell_size(triangulation, surface, phi, xi, adaptivity, base_level)
+                                       : interface_cell_size(surface, phi, adaptivity.interface_phi);
+    const double h = interface > 0 ? interface : surface.max_cell_diameter() / std::sqrt(2.0);
     if (h <= 1.25 * xi)
       return;
-    pcout << "Warning: cell size h = " << h << (interface > 0 ? " at the interface" : "")
+    pcout << "Warning: cell size h = " << h
+          << (interface > 0 ? (adaptivity.enabled() ? " at the interface once refined" : " at the interface") : "")
           << " exceeds 1.25 x the transition length xi = " << xi << " (h/xi = " << h / xi
           << "); the diffuse interface (width ~3.9 xi between phi = -0.9 and 0.9) is under-resolved. ";
     const double factor = h / (1.25 * xi);
-    if (parameters.adaptivity.enabled() && finest_level() < parameters.adaptivity.max_level)
-      pcout << "Raise <Mesh/Interface cells per xi> to at least "
-            << std::ceil(10 * parameters.adaptivity.interface_cells_per_xi * factor) / 10 << ".\n";
+    if (adaptivity.enabled() && xi / adaptivity.interface_cells_per_xi > 1.25 * xi)
+      pcout << "Raise <Mesh/Interface cells per xi> to at least 0.8.\n";
     else if (parameters.adaptivity.enabled())
       pcout << "Raise <Mesh/Maximum refinement level> above " << parameters.adaptivity.max_level
             << " or <Mesh/Cells per side> to at least " << std::ceil(parameters.cells_per_side * factor) << ".\n";

@@ -20,10 +20,14 @@ namespace Membrane
                       "also adapts after any step at which the interface or a strongly curved region has moved into "
                       "cells coarser than the indicators ask for.");
     prm.declare_entry("Interface cells per xi", "1.5", Patterns::Double(0.25, 16),
-                      "Cells holding the diffuse interface (a vertex with |phi| < Interface phi) are refined until "
-                      "their size on the surface is at most xi / this (the interface's 10-90 % width is 2.9 xi).");
+                      "Cells that hold a sharpened interface (phi varies across them with more than half the "
+                      "largest slope 3 / (4 xi) of the equilibrium profile tanh(3 s / (4 xi))) and their "
+                      "neighbours are refined until their size on the surface is at most xi / this (the "
+                      "interface's 10-90 % width is 2.9 xi). A broad profile that has not sharpened yet is not "
+                      "refined for.");
     prm.declare_entry("Interface phi", "0.9", Patterns::Double(0.1, 0.999),
-                      "A vertex with |phi| below this belongs to the diffuse interface.");
+                      "A vertex with |phi| below this belongs to the diffuse interface (for the start-up "
+                      "resolution warning, which measures the cells there).");
     prm.declare_entry("Curvature resolution", "0.3", Patterns::Double(0.01, 10),
                       "Cells are refined until h |kappa_max| <= this (h: cell size on the surface, kappa_max: the "
                       "largest principal curvature at its vertices), so that bud caps and necks are resolved.");
@@ -77,6 +81,33 @@ namespace Membrane
       return low < 0 && high > 0; // a sharp interface inside the cell
     }
 
+    /// max - min of phi over the vertices of a cell.
+    double phi_range(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
+                     const Vector &phi)
+    {
+      const auto scalar_cell = scalars.cell(cell);
+      double     low = 1e300, high = -1e300;
+      for (const unsigned int v : cell->vertex_indices())
+        {
+          const double value = phi[scalar_cell->vertex_dof_index(v, 0)];
+          low                = std::min(low, value);
+          high               = std::max(high, value);
+        }
+      return high - low;
+    }
+
+    /// The equilibrium interface phi = tanh(3 s / (4 xi)) has |grad_s phi| = 3 (1 - phi^2) / (4 xi),
+    /// at most 3 / (4 xi). A cell across which phi varies by more than half that slope
+    /// (range / h > 3 / (8 xi)) holds a sharpened interface: at equilibrium these are the
+    /// cells with |phi| < 0.7 on a resolved mesh, and every cell that a sharp interface crosses
+    /// on a coarse one; a broad profile that has not sharpened yet (the smooth bump start)
+    /// is not steep, and needs no fine cells.
+    double relative_steepness(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
+                              const Vector &phi, const double h, const double xi)
+    {
+      return phi_range(scalars, cell, phi) / h / (3 / (8 * xi));
+    }
+
     /// max |kappa_1|, |kappa_2| = |H|/2 + sqrt(H^2/4 - K) over the vertices of a cell.
     double largest_principal_curvature(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
                                        const Geometry &geometry)
@@ -103,9 +134,10 @@ namespace Membrane
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned() && cell->level() - base_level < options.max_level)
         {
-          const bool interface = holds_interface(scalars, cell, phi, options.interface_phi);
-          const double h       = cell_size(surface, cell);
-          if ((interface && h > target) ||
+          // A margin of 1.5 on the steepness, so that a sharpening interface does not
+          // trigger an adaptation every step.
+          const double h = cell_size(surface, cell);
+          if ((h > target && relative_steepness(scalars, cell, phi, h, xi) > 1.5) ||
               h * largest_principal_curvature(scalars, cell, geometry) > 2 * options.curvature_resolution)
             {
               leaves = true;
@@ -133,20 +165,40 @@ namespace Membrane
     return Utilities::MPI::max(local, surface.scalar_space().communicator());
   }
 
+  double refined_interface_cell_size(const Triangulation &triangulation, const Surface &surface, const Vector &phi,
+                                     const double xi, const AdaptivityOptions &options, const unsigned int base_level)
+  {
+    const double target = xi / options.interface_cells_per_xi;
+    double       local  = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && holds_interface(surface.scalar_space(), cell, phi, options.interface_phi))
+        {
+          double       h     = cell_size(surface, cell);
+          unsigned int level = cell->level() - base_level;
+          for (; h > target && level < options.max_level; ++level)
+            h /= 2;
+          local = std::max(local, h);
+        }
+    return Utilities::MPI::max(local, triangulation.get_communicator());
+  }
+
   std::pair<unsigned int, unsigned int> mark_cells(Triangulation &triangulation, const Surface &surface,
                                                    const Geometry &geometry, const Vector &phi,
                                                    const double xi, const AdaptivityOptions &options,
                                                    const unsigned int base_level)
   {
     const FieldSpace &scalars = surface.scalar_space();
-    // The band: cells that hold the interface and their vertex neighbours, so that the
-    // interface stays inside refined cells between adaptations.
+    // The band: cells that hold a sharpened interface (relative_steepness > 1) and their
+    // vertex neighbours, so that the interface stays inside refined cells between
+    // adaptations. Steepness rather than |phi| < Interface phi: a broad profile (the smooth
+    // bump start, before the interface has sharpened) needs no fine cells, and refining it
+    // to the interface target cost most of an adaptive run's time in its first steps.
     Vector                 band = scalars.make_owned();
     dealii::Vector<double> ones(GeometryInfo<dim>::vertices_per_cell);
     ones = 1;
     std::vector<types::global_dof_index> dofs(GeometryInfo<dim>::vertices_per_cell);
     for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && holds_interface(scalars, cell, phi, options.interface_phi))
+      if (cell->is_locally_owned() && relative_steepness(scalars, cell, phi, cell_size(surface, cell), xi) > 1)
         {
           scalars.cell(cell)->get_dof_indices(dofs);
           scalars.constraints().distribute_local_to_global(ones, dofs, band);
@@ -169,8 +221,9 @@ namespace Membrane
           const unsigned int level = cell->level() - base_level;
           const bool refine_here = (in_band && h > target) || h * kappa_max > options.curvature_resolution;
           // Coarsen only where neither indicator would ask for the cell at twice its size,
-          // with a margin of 2 on the curvature so that cells do not flip back and forth.
-          const bool coarse_enough = !in_band && 2 * h * kappa_max < 0.5 * options.curvature_resolution;
+          // with a margin of 2 so that cells do not flip back and forth.
+          const bool coarse_enough = !in_band && relative_steepness(scalars, cell, phi, h, xi) < 0.5 &&
+                                     2 * h * kappa_max < 0.5 * options.curvature_resolution;
           if (refine_here && level < options.max_level)
             {
               cell->set_refine_flag();

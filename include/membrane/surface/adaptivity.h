@@ -2,9 +2,11 @@
 // Local refinement and coarsening of the surface mesh (MODEL.md section 9).
 //
 // Indicators per cell, on the current surface (h: the cell's diameter on Gamma):
-//  - interface: the cell holds part of the diffuse interface (phi between
-//    -Interface phi and +Interface phi at some vertex, or a sign change) and
-//    h > xi / (Interface cells per xi);
+//  - interface: the cell, or a cell that shares a vertex with it, holds a sharpened
+//    interface (phi varies across it by more than h times half the largest slope
+//    3 / (4 xi) of the equilibrium profile tanh(3 s / (4 xi))), and
+//    h > xi / (Interface cells per xi). A broad profile that has not sharpened yet
+//    (the smooth bump start) is not refined for;
 //  - geometry: h |kappa| > Curvature resolution, with |kappa| estimated from the
 //    vertex values of H and K (largest principal curvature |H|/2 + sqrt(H^2/4 - K)).
 // A cell is refined if an indicator asks for it and its level is below Maximum
@@ -22,7 +24,7 @@ namespace Membrane
     unsigned int max_level             = 0;    ///< levels above the input mesh (0: uniform, no adaptation)
     unsigned int interval              = 10;   ///< accepted steps between adaptations
     double       interface_cells_per_xi = 1.5; ///< target h <= xi / this where the interface is
-    double       interface_phi          = 0.9; ///< |phi| below this at a vertex marks the interface
+    double       interface_phi          = 0.9; ///< |phi| below this at a vertex marks the interface (resolution warning)
     double       curvature_resolution   = 0.3; ///< target h |kappa_max| <= this
     bool         smooth_new_vertices    = true; ///< new vertices on a smooth (Hermite) surface
     double       memory_limit           = 0;    ///< bytes of all ranks after a refinement (0: 80 % of available)
@@ -44,6 +46,15 @@ namespace Membrane
   /// Largest size (cell_size) of the cells that hold the diffuse interface (a vertex
   /// with |phi| < `interface_phi`), over all ranks; 0 if there is no interface.
   double interface_cell_size(const Surface &surface, const Vector &phi_ghosted, double interface_phi);
+
+  /// Largest size the cells holding the diffuse interface (as interface_cell_size) reach
+  /// once refined by the interface indicator: each is halved while it is larger than
+  /// xi / Interface cells per xi and below the maximum level. Over all ranks; 0 if there
+  /// is no interface. With a broad initial profile the indicator refines these cells as
+  /// the interface sharpens, so this, not their present size, is the resolution of a run.
+  double refined_interface_cell_size(const Triangulation &triangulation, const Surface &surface,
+                                     const Vector &phi_ghosted, double transition_length,
+                                     const AdaptivityOptions &options, unsigned int base_level);
 
   /// Set refinement and coarsening flags on the locally owned cells of `triangulation`
   /// (the surface's) by the indicators above; `base_level` is the level of the input
