@@ -3,7 +3,8 @@
 
 For each line tension sigma (default 630 and 1000) the 7.3 setup (experiments/7.3-budding.prm,
 end time 3.1 unless --end-time) runs on
-  - uniform meshes of 32, 48 and 64 cells per side (Mesh/Maximum refinement level = 0);
+  - uniform meshes of 32, 48 and 64 cells per side (Mesh/Maximum refinement level = 0; --uniform
+    chooses others, e.g. 32,48,64,128);
   - the 32 x 32 input mesh with local refinement: level 1 with Interface cells per xi = 1.5,
     level 2 with 3, level 3 with 6 (--levels chooses which; default 1,2).
 VTU output and checkpoints are off; every case runs in its own directory
@@ -20,7 +21,7 @@ docs/images/mesh-convergence.png (final energy against number of cells) and
 docs/images/mesh-convergence-history.png (energy and cells against time).
 
 Usage: scripts/mesh_convergence.py [--workers 2] [--exe build/membrane-flow] [--levels 1,2]
-           [--sigmas 630,1000] [--end-time T] [--timeout SECONDS] [--report-only]
+           [--uniform 32,48,64] [--sigmas 630,1000] [--end-time T] [--timeout SECONDS] [--report-only]
 """
 import argparse
 import json
@@ -279,16 +280,18 @@ def line_energy(s):
 # ----------------------------------------------------------------------------------------------
 # report
 
-def order_estimate(e32, e48, e64):
-    """p with (E32 - E48)/(E48 - E64) = (32^-p - 48^-p)/(48^-p - 64^-p), i.e. E = E* + C h^p with
-    h = 1/N; and the extrapolated E*. None when the differences change sign (not monotone)."""
-    d1, d2 = e32 - e48, e48 - e64
+def order_estimate(sizes, energies):
+    """p with (E1 - E2)/(E2 - E3) = (n1^-p - n2^-p)/(n2^-p - n3^-p) for the three finest uniform
+    meshes n1 < n2 < n3 cells per side, i.e. E = E* + C h^p with h = 1/n; and the extrapolated
+    E*. None when the differences change sign (not monotone)."""
+    (n1, n2, n3), (e1, e2, e3) = [float(n) for n in sizes[-3:]], energies[-3:]
+    d1, d2 = e1 - e2, e2 - e3
     if d1 == 0 or d2 == 0 or (d1 > 0) != (d2 > 0):
         return None
     ratio = d1 / d2
 
     def g(p):
-        return (32.0 ** -p - 48.0 ** -p) / (48.0 ** -p - 64.0 ** -p) - ratio
+        return (n1 ** -p - n2 ** -p) / (n2 ** -p - n3 ** -p) - ratio
     lo, hi = 1e-3, 20.0
     if g(lo) * g(hi) > 0:  # ratio outside what any p in (0, 20] gives
         return None
@@ -299,8 +302,12 @@ def order_estimate(e32, e48, e64):
         else:
             lo = mid
     p = 0.5 * (lo + hi)
-    c = d2 / (48.0 ** -p - 64.0 ** -p)
-    return p, e64 - c * 64.0 ** -p
+    c = d2 / (n2 ** -p - n3 ** -p)
+    return p, e3 - c * n3 ** -p
+
+
+def uniform_names(sizes):
+    return ', '.join(str(n) for n in sizes)
 
 
 def fmt(x, digits=4):
@@ -317,7 +324,7 @@ def table(results, sigma):
                 and state(r) == 'ok'), None)
     e_ref = ref['summary']['energy'] if ref else None
     head = ('| mesh | final cells | final energy | line energy | bending energy | outcome | domain_protrusion '
-            '| neck_radius at stop | steps | rejected steps | wall time (s) | energy vs uniform 64 |')
+            f'| neck_radius at stop | steps | rejected steps | wall time (s) | energy vs uniform {max(UNIFORM)} |')
     lines = [head, '|' + '---|' * 12]
     for r in rows:
         c, s, st = r['case'], r['summary'], r['status']
@@ -352,8 +359,9 @@ def conclusions(results, sigma, levels):
     rows = {(r['case'].kind, r['case'].value): r for r in results if r['case'].sigma == sigma}
     ok = {k: r for k, r in rows.items() if state(r) == 'ok'}
     out = []
-    ref = ok.get(('uniform', max(UNIFORM)))
-    # adaptive at its finest level against uniform 64
+    nmax = max(UNIFORM)
+    ref = ok.get(('uniform', nmax))
+    # adaptive at its finest level against the finest uniform mesh
     finest = max(levels) if levels else None
     if finest is not None:
         a = rows.get(('adaptive', finest))
@@ -361,14 +369,14 @@ def conclusions(results, sigma, levels):
             out.append(f'Adaptive level {finest}: {state(a) if a else "not run"}, so no comparison with the '
                        f'finest uniform mesh.')
         elif ref is None:
-            out.append(f'The uniform 64 run is missing or failed, so adaptive level {finest} has no reference.')
+            out.append(f'The uniform {nmax} run is missing or failed, so adaptive level {finest} has no reference.')
         else:
             ea, er = a['summary']['energy'], ref['summary']['energy']
             rel = (ea - er) / er
             wa, wr = a['summary']['wall_seconds'], ref['summary']['wall_seconds']
             verdict = 'agrees with' if abs(rel) <= 0.01 else 'does **not** agree with'
             out.append(f'Adaptive level {finest}, the finest interface resolution run ({CELLS_PER_XI[finest]:g} cells '
-                       f'per xi), {verdict} uniform 64 within 1 %: final energy {ea:.4f} against {er:.4f} '
+                       f'per xi), {verdict} uniform {nmax} within 1 %: final energy {ea:.4f} against {er:.4f} '
                        f'({100 * rel:+.2f} %), at {wa / wr:.2f} times its wall time ({wa:.0f} s against {wr:.0f} s).')
             for lvl in sorted(levels):
                 b = ok.get(('adaptive', lvl))
@@ -379,28 +387,49 @@ def conclusions(results, sigma, levels):
                 cb, cr = (b['status'] or {}).get('cpu_seconds'), (ref['status'] or {}).get('cpu_seconds')
                 cpu = f', CPU time {cb:.0f} s against {cr:.0f} s ({cb / cr:.2f}x)' if cb and cr else ''
                 out.append(f'Adaptive level {lvl} ({CELLS_PER_XI[lvl]:g} per xi, {sb["cells"]} final cells against '
-                           f'4096): energy {100 * (eb - er) / er:+.2f} % from uniform 64, of which line energy '
-                           f'{line_energy(sb) - line_energy(sr):+.3f} and bending energy '
+                           f'{nmax * nmax}): energy {100 * (eb - er) / er:+.2f} % from uniform {nmax}, of which line '
+                           f'energy {line_energy(sb) - line_energy(sr):+.3f} and bending energy '
                            f'{sb["bending_energy"] - sr["bending_energy"]:+.3f}; wall time '
                            f'{sb["wall_seconds"] / wr:.2f}x{cpu}.')
+    # like for like: level L against the uniform mesh of its finest cells, 32 x 2^L per side
+    for lvl in sorted(levels):
+        b, u = ok.get(('adaptive', lvl)), ok.get(('uniform', 32 * 2 ** lvl))
+        if not b or not u:
+            continue
+        sb, su = b['summary'], u['summary']
+        rel = (sb['energy'] - su['energy']) / su['energy']
+        wall = sb['wall_seconds'] / su['wall_seconds']
+        cb, cu = (b['status'] or {}).get('cpu_seconds'), (u['status'] or {}).get('cpu_seconds')
+        cpu = f', CPU time {cb / cu:.2f}x ({cb:.0f} s against {cu:.0f} s)' if cb and cu else ''
+        both = abs(rel) <= 0.01 and wall <= 1 / 3
+        out.append(f'Adaptive level {lvl} against uniform {32 * 2 ** lvl}, whose cells are everywhere as small as '
+                   f'its finest: energy {100 * rel:+.2f} %, neck radius {sb["neck_radius"]:.4f} against '
+                   f'{su["neck_radius"]:.4f}, outcome {sb["outcome"]} against {su["outcome"]}, with '
+                   f'{sb["cells"]} cells against {su["cells"]} at {wall:.2f} times the wall time{cpu}: '
+                   + ('**within 1 % at no more than a third of the wall time**.' if both else
+                      f'{"within" if abs(rel) <= 0.01 else "**not** within"} 1 %, '
+                      f'{"at no more" if wall <= 1 / 3 else "at **more**"} than a third of the wall time.'))
     # uniform convergence
     us = [ok.get(('uniform', n)) for n in UNIFORM]
+    names = uniform_names(UNIFORM[-3:])
     if all(us):
         e = [u['summary']['energy'] for u in us]
-        d1, d2 = e[0] - e[1], e[1] - e[2]
         seq = ', '.join(f'{x:.4f}' for x in e)
-        est = order_estimate(*e)
+        changes = ', '.join(f'{a}->{b} {e[i + 1] - e[i]:+.4f}' for i, (a, b) in enumerate(zip(UNIFORM, UNIFORM[1:])))
+        est = order_estimate(UNIFORM, e)
         if est is None:
-            out.append(f'Uniform energies (32, 48, 64): {seq}. The differences 32->48 ({-d1:+.4f}) and 48->64 '
-                       f'({-d2:+.4f}) are not monotone in a way a power law fits, so no order is estimated; '
-                       f'the spread between 48 and 64 is {100 * abs(d2) / abs(e[2]):.2f} % of the energy.')
+            out.append(f'Uniform energies ({uniform_names(UNIFORM)}): {seq}; changes {changes}. The changes between '
+                       f'{names} are not monotone in a way a power law fits, so no order is estimated.')
+        elif est[0] < 0.5:
+            out.append(f'Uniform energies ({uniform_names(UNIFORM)}): {seq}; changes {changes}. Fitting '
+                       f'E = E* + C h^p to {names} gives an observed order p = {est[0]:.2f}: the uniform sequence is '
+                       f'far from its asymptotic range at this end time, and an extrapolation would mean nothing.')
         else:
             p, einf = est
-            out.append(f'Uniform energies (32, 48, 64): {seq}; changes 32->48 {-d1:+.4f}, 48->64 {-d2:+.4f} '
-                       f'(monotone). Fitting E = E* + C h^p to the three gives an observed order p = {p:.2f} and '
-                       f'an extrapolated E* = {einf:.4f}; uniform 64 is then {100 * (e[2] - einf) / einf:+.2f} % '
-                       f'from E*. Three points determine p exactly, so this is an estimate, not a test of the '
-                       f'asymptotic range.')
+            out.append(f'Uniform energies ({uniform_names(UNIFORM)}): {seq}; changes {changes}. Fitting '
+                       f'E = E* + C h^p to {names} gives an observed order p = {p:.2f} and an extrapolated '
+                       f'E* = {einf:.4f}; uniform {nmax} is then {100 * (e[-1] - einf) / einf:+.2f} % from E*. Three '
+                       f'points determine p exactly, so this is an estimate, not a test of the asymptotic range.')
             for lvl in sorted(levels):
                 b = ok.get(('adaptive', lvl))
                 if b:
@@ -424,9 +453,9 @@ def conclusions(results, sigma, levels):
             einf = e[2] - d2 / (2 ** p - 1)
             text += (f': with the interface cell size halved per level, an observed order {p:.2f} and an extrapolated '
                      f'{einf:.4f}')
-            if all(ok.get(('uniform', n)) for n in UNIFORM) and order_estimate(
-                    *[ok[('uniform', n)]['summary']['energy'] for n in UNIFORM]):
-                eu = order_estimate(*[ok[('uniform', n)]['summary']['energy'] for n in UNIFORM])[1]
+            if all(ok.get(('uniform', n)) for n in UNIFORM) and (order_estimate(
+                    UNIFORM, [ok[('uniform', n)]['summary']['energy'] for n in UNIFORM]) or (0,))[0] >= 0.5:
+                eu = order_estimate(UNIFORM, [ok[('uniform', n)]['summary']['energy'] for n in UNIFORM])[1]
                 text += f', {100 * (einf - eu) / eu:+.2f} % from the uniform E*'
         else:
             text += ': the changes do not shrink, so the adaptive sequence shows no convergence yet'
@@ -543,7 +572,7 @@ def plot(results, sigmas, levels):
         us = [r for r in results if r['case'].sigma == s and r['case'].kind == 'uniform' and state(r) == 'ok']
         if us:
             ax.plot([r['summary']['cells'] for r in us], [r['summary']['energy'] for r in us], 'o-', color=colors[s],
-                    label=f'sigma = {fmt_sigma(s)}, uniform 32/48/64')
+                    label=f'sigma = {fmt_sigma(s)}, uniform {"/".join(map(str, UNIFORM))}')
         for r in results:
             c = r['case']
             if c.sigma == s and c.kind == 'adaptive' and state(r) == 'ok':
@@ -561,7 +590,7 @@ def plot(results, sigmas, levels):
     plt.close(fig)
 
     fig, axes = plt.subplots(len(sigmas), 3, figsize=(15, 3.8 * len(sigmas)), squeeze=False)
-    styles = {('uniform', 32): ':', ('uniform', 48): '--', ('uniform', 64): '-'}
+    styles = {('uniform', n): ls for n, ls in zip(UNIFORM, [':', '--', '-.', '-', '-'])}
     for i, s in enumerate(sigmas):
         for r in results:
             c, st = r['case'], r['stats']
@@ -592,14 +621,15 @@ def write_report(results, sigmas, levels, command, end_time, exe):
     parts = ['# Mesh convergence: uniform meshes against local refinement', '',
              'The 7.3 budding setup ([experiments/7.3-budding.prm](../experiments/7.3-budding.prm)) at line tension '
              + ' and '.join(f'sigma = {fmt_sigma(s)}' for s in sigmas) +
-             f', run to t = {t_end:g}, on uniform meshes of 32, 48 and 64 cells per side and on the 32 x 32 '
+             f', run to t = {t_end:g}, on uniform meshes of {uniform_names(UNIFORM[:-1])} and {UNIFORM[-1]} cells '
+             'per side and on the 32 x 32 '
              'input mesh with local refinement (`Mesh/Maximum refinement level` L with `Mesh/Interface cells per xi`'
              ' ' + ', '.join(f'{CELLS_PER_XI[l]:g} for L = {l}' for l in sorted(levels)) +
              '; the other refinement entries at their defaults: adaptation every 10 accepted steps, curvature '
              'resolution 0.3). At its finest level L the adaptive mesh has cells of 1/(32 x 2^L) in the parameter '
-             'plane: 1/64 (as uniform 64) for L = 1, 1/128 for L = 2, 1/256 for L = 3; so level 2 resolves the '
-             'interface more finely than any of the uniform meshes. VTU output and checkpoints are off; one case '
-             'per core.',
+             'plane: 1/64 (as uniform 64) for L = 1, 1/128 (as uniform 128) for L = 2, 1/256 for L = 3. The '
+             'interface indicator refines cells where phi is sharp (model.md, local refinement). VTU output and '
+             'checkpoints are off; one case per core.',
              '', 'Regenerate everything (runs only the cases without a `summary.json`, then rewrites this page and '
              'its figures):', '', '```sh', command, '```', '']
     if end_time is not None and end_time != FILE_END_TIME:
@@ -611,15 +641,16 @@ def write_report(results, sigmas, levels, command, end_time, exe):
               'Columns: line energy = gradient_energy + well_energy; final cells = `cells` at the end '
               '(the adaptive meshes change every 10 steps); wall time = the run\'s own `wall_seconds`, measured while '
               'two cases shared the machine\'s 2 cores with other work, so it is indicative only (the CPU time of '
-              'each case is listed further down); the last column is the final energy relative to the uniform 64 '
-              'run of the same sigma.', '']
+              'each case is listed further down); the last column is the final energy relative to the uniform '
+              f'{UNIFORM[-1]} run of the same sigma.', '']
     for s in sigmas:
         parts += [f'## sigma = {fmt_sigma(s)}', '', table(results, s), '']
         parts += ['Findings (computed from the table):', '']
         parts += [f'- {t}' for t in conclusions(results, s, levels)]
         parts += ['']
     parts += [f'![final energy against cells]({os.path.relpath(FIGURE, "docs")})', '',
-              'Final energy against the number of cells at the end of the run (log scale). Lines: uniform 32, 48, 64; '
+              'Final energy against the number of cells at the end of the run (log scale). Lines: uniform '
+              f'{uniform_names(UNIFORM)}; '
               'open markers: adaptive runs.', '',
               f'![energy and cells against time]({os.path.relpath(HISTORY, "docs")})', '',
               'Energy (from t = 0.05, after the initial sharpening of phi), domain_protrusion and number of '
@@ -664,6 +695,9 @@ def main():
     parser.add_argument('--exe', default=os.path.join(ROOT, 'build', 'membrane-flow'))
     parser.add_argument('--levels', default='1,2', help='adaptive refinement levels, from 1,2,3 (default 1,2)')
     parser.add_argument('--sigmas', default='630,1000', help='line tensions (default 630,1000)')
+    parser.add_argument('--uniform', default='32,48,64',
+                        help='cells per side of the uniform meshes, at least three, ascending (default 32,48,64; '
+                             '128 adds the uniform mesh as fine as level 2 everywhere)')
     parser.add_argument('--end-time', type=float, default=None,
                         help=f'End time of every case (default: the file\'s {FILE_END_TIME:g})')
     parser.add_argument('--output', default=DEFAULT_OUTPUT, help=f'run directory (default {DEFAULT_OUTPUT})')
@@ -676,6 +710,10 @@ def main():
     if any(l not in CELLS_PER_XI for l in levels):
         parser.error('--levels takes levels from 1, 2, 3')
     sigmas = [float(x) for x in args.sigmas.split(',')]
+    global UNIFORM
+    UNIFORM = sorted({int(x) for x in args.uniform.split(',') if x.strip()})
+    if len(UNIFORM) < 3 or UNIFORM[0] < 2:
+        parser.error('--uniform takes at least three mesh sizes, e.g. 32,48,64')
     if args.workers < 1:
         parser.error('--workers must be at least 1')
     exe = os.path.abspath(args.exe)
@@ -689,6 +727,8 @@ def main():
         command += f' --workers {args.workers}'
     # the page names the command a user runs (the default executable), whichever binary made the numbers
     command += f' --levels {",".join(map(str, levels))}'
+    if args.uniform != parser.get_default('uniform'):
+        command += f' --uniform {",".join(map(str, UNIFORM))}'
     if args.sigmas != parser.get_default('sigmas'):
         command += f' --sigmas {args.sigmas}'
     if args.end_time is not None:

@@ -13,6 +13,12 @@ first of these line tensions at which the uniform mesh forms a neck, 1500 if it 
 if it forms none, adaptive2 is also run at 2000.
 Case directories: results/studies/neck/<case> (a suffix -s<sigma> for sigma other than 1500).
 
+--xi X runs the same study with the transition length X in place of the file's 0.03, and every
+line tension scaled by 0.03 / X, so that sigma xi, the line tension of the sharp-interface limit,
+is the same: into results/studies/neck-xi<X>/, reported in docs/neck-resolution-xi<X>.md. The
+diffuse interface (about 4 xi wide) sits in the neck, so the neck cannot become much narrower
+than about 2 xi: a thinner interface lets the bud's neck close further.
+
 Every run: OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1, working directory the repository root,
 one run at a time, VTU output and checkpoints off. A case is finished when its summary.json
 exists (also a failed run writes one); finished cases are not run again.
@@ -21,7 +27,7 @@ Then the report docs/neck-resolution.md and the figure docs/images/neck-resoluti
 written from the statistics.txt and summary.json of every finished case.
 
 Usage: scripts/neck_study.py [--dry-run] [--report-only] [--max-level 3] [--exe PATH]
-           [--timeout SECONDS]
+           [--timeout SECONDS] [--xi X]
 """
 import argparse
 import json
@@ -43,6 +49,8 @@ OUTPUT = 'results/studies/neck'
 DOC = 'docs/neck-resolution.md'
 FIGURE = 'docs/images/neck-resolution.png'
 END_TIME = 4.0
+FILE_XI = 0.03         # the base file's Material/Transition length
+XI = FILE_XI           # --xi
 SIGMA = 1500.0
 SIGMA_FALLBACK = 2000.0
 NECK_RATIO = 0.4       # Outcome/Complete neck ratio (default)
@@ -61,6 +69,7 @@ class Case:
         base = 'uniform32' if level == 0 else f'adaptive{level}'
         self.name = base if sigma == SIGMA else f'{base}-s{fmt(sigma)}'
         self.dir = os.path.join(OUTPUT, self.name)
+        self.xi = XI
         self.mesh = ('uniform 32 x 32' if level == 0 else
                      f'32 x 32, {level} refinement levels, {fmt(CELLS_PER_XI[level])} cells per xi')
 
@@ -71,6 +80,8 @@ class Case:
              ('Checkpoint/Interval', '0'),
              ('Output/Directory', self.dir),
              ('Mesh/Maximum refinement level', str(self.level))]
+        if self.xi != FILE_XI:
+            s.append(('Material/Transition length', fmt(self.xi)))
         if self.level > 0:
             s.append(('Mesh/Interface cells per xi', fmt(CELLS_PER_XI[self.level])))
         return s
@@ -173,7 +184,7 @@ def plan(args, execute):
     u = Case(0, SIGMA)
     if not step(u):
         if not execute and not args.report_only:
-            print('# then, depending on the result: uniform32-s2000 (if no neck at 1500), '
+            print(f'# then, depending on the result: uniform32-s{fmt(SIGMA_FALLBACK)} (if no neck at {fmt(SIGMA)}), '
                   'adaptive2, adaptive3 (if adaptive2 does not halve the neck radius)')
         return cases
     sigma = SIGMA
@@ -183,7 +194,7 @@ def plan(args, execute):
         if not step(u2):
             if not execute and not args.report_only:
                 print('# then adaptive2 (and possibly adaptive3) at the line tension at which '
-                      'uniform 32 forms a neck, 1500 if none')
+                      f'uniform 32 forms a neck, {fmt(SIGMA)} if none')
             return cases
         if analyse(u2)['neck_formed']:
             sigma, u = SIGMA_FALLBACK, u2
@@ -270,8 +281,10 @@ def report(cases, exe):
     L.append('')
     L.append('A bud on a neck is followed only as far as the mesh resolves the neck. The 7.3 budding '
              'setup ([experiments/7.3-budding.prm](../experiments/7.3-budding.prm): bump of area 1.3, '
-             'phase-A domain of mass -0.85, kappa = 1.5, kappa_G = -1, xi = 0.03) is run at a large line '
-             f'tension to t = {fmt(END_TIME)} on the uniform 32 x 32 mesh and on the 32 x 32 input mesh with local '
+             f'phase-A domain of mass -0.85, kappa = 1.5, kappa_G = -1, xi = {fmt(FILE_XI)}) '
+             + (f'with the transition length xi = {fmt(XI)} in place of {fmt(FILE_XI)} (and the line tension scaled '
+                f'by {fmt(FILE_XI)} / {fmt(XI)}, so that sigma xi is the same) ' if XI != FILE_XI else '') +
+             f'is run at a large line tension to t = {fmt(END_TIME)} on the uniform 32 x 32 mesh and on the 32 x 32 input mesh with local '
              'refinement (`Mesh/Maximum refinement level` 2 with `Mesh/Interface cells per xi` 3, finest cells '
              '1/128 in the parameter plane; level 3 with 6 per xi, 1/256). The neck observables are those '
              'of [model.md](model.md) (bud observables and outcome): of 64 closed cross-sections around '
@@ -292,7 +305,7 @@ def report(cases, exe):
              'page and its figure; `--dry-run` prints the commands):')
     L.append('')
     L.append('```sh')
-    L.append('scripts/neck_study.py')
+    L.append('scripts/neck_study.py' + (f' --xi {fmt(XI)}' if XI != FILE_XI else ''))
     L.append('```')
     L.append('')
     L.append('The runs it makes (from the repository root):')
@@ -335,6 +348,10 @@ def report(cases, exe):
     uniforms = [a for a in results if a['case'].level == 0]
     adaptives = [a for a in results if a['case'].level > 0]
     L.append('## The factor 2')
+    L.append('')
+    L.append(f'The diffuse interface, about 4 xi wide between phi = -0.9 and 0.9, sits in the neck. Narrowest '
+             f'section of each run in units of xi = {fmt(XI)}: ' +
+             ', '.join(f"{a['case'].name} {a['min_any'][0] / XI:.2f}" for a in results) + '.')
     L.append('')
     if uniforms and adaptives:
         for a in uniforms:
@@ -476,7 +493,17 @@ def main():
     p.add_argument('--max-level', type=int, default=3, help='highest refinement level to run (2 or 3)')
     p.add_argument('--exe', default=EXE)
     p.add_argument('--timeout', type=float, default=None, help='seconds per run')
+    p.add_argument('--xi', type=float, default=FILE_XI,
+                   help=f'transition length (default the file\'s {FILE_XI:g}); the line tensions scale by {FILE_XI:g} / xi')
     args = p.parse_args()
+    if not 0 < args.xi <= 1:
+        p.error('--xi takes a transition length in (0, 1]')
+    global XI, SIGMA, SIGMA_FALLBACK, OUTPUT, DOC, FIGURE
+    if args.xi != FILE_XI:
+        XI = args.xi
+        SIGMA, SIGMA_FALLBACK = SIGMA * FILE_XI / XI, SIGMA_FALLBACK * FILE_XI / XI
+        OUTPUT, DOC = f'{OUTPUT}-xi{fmt(XI)}', f'docs/neck-resolution-xi{fmt(XI)}.md'
+        FIGURE = f'docs/images/neck-resolution-xi{fmt(XI)}.png'
     os.chdir(ROOT)
     if args.dry_run:
         if all(c.finished for c in plan(args, execute=False)):

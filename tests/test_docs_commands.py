@@ -17,7 +17,7 @@ A run with the same arguments, input file and working directory as an earlier co
 repeated while its results are unchanged (scripts/run_experiments.sh runs the experiments that
 docs/experiments.md lists one by one). bench_cahn_hilliard runs its 32 x 32 case only, briefly.
 benchmarks/scaling.py runs with --sizes 16,32 in place of its documented sizes, mesh_convergence.py
-with --levels 1, neck_study.py with --max-level 2 and the 4-rank sweep with 2 ranks (REDUCED).
+with --levels 1 (and uniform meshes of 16, 24, 32), neck_study.py with --max-level 2 and the 4-rank sweep with 2 ranks (REDUCED).
 Placeholders the docs use are created first: my_run.prm (experiments/default.prm),
 my_sweep.json (two line tensions of 7.3) and hosts (an MPI host file for this machine).
 Usage: test_docs_commands.py <source dir> <membrane-flow> <bench_cahn_hilliard> [<filter>]"""
@@ -43,6 +43,7 @@ MAX_STEPS = 3
 REDUCED = [(re.compile(r"^(benchmarks/scaling\.py .*)--sizes \S+"), r"\1--sizes 16,32"),
            # The studies with the most cases run their smallest set: each case still runs, 3 steps.
            (re.compile(r"^(scripts/mesh_convergence\.py .*)--levels 1,2,3"), r"\1--levels 1"),
+           (re.compile(r"^(scripts/mesh_convergence\.py .*)--uniform \S+"), r"\1--uniform 16,24,32"),
            (re.compile(r"^scripts/neck_study\.py$"), "scripts/neck_study.py --max-level 2"),
            # 4 ranks on a 2-core machine spend most of their time waiting for each other.
            (re.compile(r"^(scripts/sweep\.py .*)--ranks 4"), r"\1--ranks 2")]
