@@ -167,9 +167,7 @@ namespace Membrane
     // (the smooth bump start is refined only then).
     const AdaptivityOptions &adaptivity = parameters.adaptivity;
     const double             xi         = parameters.material.transition_length;
-    const double             interface =
-      adaptivity.enabled() ? refined_interface_cell_size(triangulation, surface, phi, xi, adaptivity, base_level)
-                                       : interface_cell_size(surface, phi, adaptivity.interface_phi);
+    const double             interface  = interface_cell_size(surface, phi, xi, adaptivity, base_level);
     const double h = interface > 0 ? interface : surface.max_cell_diameter() / std::sqrt(2.0);
     if (h <= 1.25 * xi)
       return;

@@ -65,25 +65,9 @@ namespace Membrane
 
   namespace
   {
-    bool holds_interface(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
-                         const Vector &phi, const double interface_phi)
-    {
-      const auto scalar_cell = scalars.cell(cell);
-      double     low = 1e300, high = -1e300;
-      for (const unsigned int v : cell->vertex_indices())
-        {
-          const double value = phi[scalar_cell->vertex_dof_index(v, 0)];
-          if (std::abs(value) < interface_phi)
-            return true;
-          low  = std::min(low, value);
-          high = std::max(high, value);
-        }
-      return low < 0 && high > 0; // a sharp interface inside the cell
-    }
-
-    /// max - min of phi over the vertices of a cell.
-    double phi_range(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
-                     const Vector &phi)
+    /// Smallest and largest phi over the vertices of a cell.
+    std::pair<double, double> phi_bounds(const FieldSpace &scalars,
+                                         const typename Triangulation::active_cell_iterator &cell, const Vector &phi)
     {
       const auto scalar_cell = scalars.cell(cell);
       double     low = 1e300, high = -1e300;
@@ -93,6 +77,21 @@ namespace Membrane
           low                = std::min(low, value);
           high               = std::max(high, value);
         }
+      return {low, high};
+    }
+
+    /// A vertex with |phi| < interface_phi, or a sign change (a sharp interface inside the cell).
+    bool holds_interface(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
+                         const Vector &phi, const double interface_phi)
+    {
+      const auto [low, high] = phi_bounds(scalars, cell, phi);
+      return low < interface_phi && high > -interface_phi;
+    }
+
+    double phi_range(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
+                     const Vector &phi)
+    {
+      const auto [low, high] = phi_bounds(scalars, cell, phi);
       return high - low;
     }
 
@@ -156,21 +155,12 @@ namespace Membrane
     return Utilities::MPI::max(local, triangulation.get_communicator());
   }
 
-  double interface_cell_size(const Surface &surface, const Vector &phi, const double interface_phi)
-  {
-    double local = 0;
-    for (const auto &cell : surface.scalar_space().dof_handler().get_triangulation().active_cell_iterators())
-      if (cell->is_locally_owned() && holds_interface(surface.scalar_space(), cell, phi, interface_phi))
-        local = std::max(local, cell_size(surface, cell));
-    return Utilities::MPI::max(local, surface.scalar_space().communicator());
-  }
-
-  double refined_interface_cell_size(const Triangulation &triangulation, const Surface &surface, const Vector &phi,
-                                     const double xi, const AdaptivityOptions &options, const unsigned int base_level)
+  double interface_cell_size(const Surface &surface, const Vector &phi, const double xi,
+                             const AdaptivityOptions &options, const unsigned int base_level)
   {
     const double target = xi / options.interface_cells_per_xi;
     double       local  = 0;
-    for (const auto &cell : triangulation.active_cell_iterators())
+    for (const auto &cell : surface.scalar_space().dof_handler().get_triangulation().active_cell_iterators())
       if (cell->is_locally_owned() && holds_interface(surface.scalar_space(), cell, phi, options.interface_phi))
         {
           double       h     = cell_size(surface, cell);
@@ -179,7 +169,7 @@ namespace Membrane
             h /= 2;
           local = std::max(local, h);
         }
-    return Utilities::MPI::max(local, triangulation.get_communicator());
+    return Utilities::MPI::max(local, surface.scalar_space().communicator());
   }
 
   std::pair<unsigned int, unsigned int> mark_cells(Triangulation &triangulation, const Surface &surface,

@@ -44,17 +44,13 @@ namespace Membrane
   double cell_size(const Surface &surface, const typename Triangulation::active_cell_iterator &cell);
 
   /// Largest size (cell_size) of the cells that hold the diffuse interface (a vertex
-  /// with |phi| < `interface_phi`), over all ranks; 0 if there is no interface.
-  double interface_cell_size(const Surface &surface, const Vector &phi_ghosted, double interface_phi);
-
-  /// Largest size the cells holding the diffuse interface (as interface_cell_size) reach
-  /// once refined by the interface indicator: each is halved while it is larger than
-  /// xi / Interface cells per xi and below the maximum level. Over all ranks; 0 if there
-  /// is no interface. With a broad initial profile the indicator refines these cells as
-  /// the interface sharpens, so this, not their present size, is the resolution of a run.
-  double refined_interface_cell_size(const Triangulation &triangulation, const Surface &surface,
-                                     const Vector &phi_ghosted, double transition_length,
-                                     const AdaptivityOptions &options, unsigned int base_level);
+  /// with |phi| < `Interface phi`, or a sign change) once refined by the interface
+  /// indicator: each is halved while it is larger than xi / Interface cells per xi and
+  /// below the maximum level (on a uniform mesh: their present size). Over all ranks; 0 if
+  /// there is no interface. With a broad initial profile the indicator refines these cells
+  /// as the interface sharpens, so this, not their present size, is the resolution of a run.
+  double interface_cell_size(const Surface &surface, const Vector &phi_ghosted, double transition_length,
+                             const AdaptivityOptions &options, unsigned int base_level);
 
   /// Set refinement and coarsening flags on the locally owned cells of `triangulation`
   /// (the surface's) by the indicators above; `base_level` is the level of the input
