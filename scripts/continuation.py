@@ -35,6 +35,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from membrane_workflow.critical import classifier  # noqa: E402
 from membrane_workflow.continuation import crossing, follow_branch, turning_point  # noqa: E402
 from membrane_workflow.sweep import write_atomically  # noqa: E402
 
@@ -53,21 +54,6 @@ def checkpoint_time(path):
             if line.startswith('parameters'):
                 break
     raise RunFailed(f'{path} is not a checkpoint of membrane-flow (no time)')
-
-
-def classifier(spec):
-    if spec == 'outcome':
-        return lambda s: s['outcome']
-    kind, _, threshold = spec.partition(':')
-    try:
-        x = float(threshold)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f'--classify {spec}: expected outcome, protrusion:X or neck:X') from None
-    if kind == 'protrusion':
-        return lambda s: 'protruding' if s['domain_protrusion'] >= x else 'not protruding'
-    if kind == 'neck':
-        return lambda s: 'necked' if s['neck_ratio'] < x else 'no neck'
-    raise argparse.ArgumentTypeError(f'--classify {spec}: expected outcome, protrusion:X or neck:X')
 
 
 def follow(args):
@@ -160,7 +146,7 @@ def main():
         return compare(args)
     try:
         classifier(args.classify)
-    except argparse.ArgumentTypeError as e:
+    except ValueError as e:
         parser.error(str(e))
     if not os.path.isfile(args.base):
         parser.error(f'the base input file {args.base} does not exist')

@@ -9,11 +9,18 @@ A failed run (simulator exit code != 0 or "failed": true) never ends a bracket: 
 stops there. Whatever happens, results.csv and bisection.json are written ("bracket": null
 and an "error" when no bracket was found).
 
+The class of a run is its outcome (summary.json's "outcome") by default; --classify
+protrusion:X classes the runs as protruding (domain_protrusion >= X) or not, and --classify
+neck:X as necked (neck_ratio < X) or not: the thresholds of scripts/continuation.py. A
+protrusion threshold finds the flat-start threshold of a budding setup by an end time at which
+no neck has closed yet; the outcome needs a complete bud (Outcome/Complete neck ratio).
+
 Exit codes: 0 bracket found; 1 bad arguments or entry names, or both ends give the same
 outcome; 2 a run failed; 130 / 143 stopped by SIGINT / SIGTERM.
 
 Usage: critical_value.py <base.prm> <Section/Entry> <low> <high> --tolerance T --output DIR
-                         [--geometric] [--set 'Section/Entry=value' ...] [--ranks R] [--exe PATH] [--overwrite]
+                         [--geometric] [--classify outcome|protrusion:X|neck:X]
+                         [--set 'Section/Entry=value' ...] [--ranks R] [--exe PATH] [--overwrite]
 Example (critical line tension of 7.3's setup, to 5 %):
   scripts/critical_value.py experiments/7.3-budding.prm 'Material/Line tension' 300 1500 \\
       --tolerance 0.05 --geometric --output results/critical-sigma"""
@@ -24,7 +31,7 @@ import signal
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from membrane_workflow.critical import FailedRun, NoChange, bisect  # noqa: E402
+from membrane_workflow.critical import FailedRun, NoChange, bisect, classifier  # noqa: E402
 from membrane_workflow.sweep import Sweep, SweepError, normalize_name, write_atomically  # noqa: E402
 
 NAME = 'critical_value.py'
@@ -43,6 +50,8 @@ def main():
     parser.add_argument('--tolerance', type=float, required=True)
     parser.add_argument('--geometric', action='store_true', help='bisect in log space (tolerance on log(high/low))')
     parser.add_argument('--output', required=True)
+    parser.add_argument('--classify', default='outcome',
+                        help="class of a run: outcome (default), protrusion:X or neck:X")
     parser.add_argument('--set', action='append', default=[], help="fixed override 'Section/Entry=value'")
     parser.add_argument('--ranks', type=int, default=1)
     parser.add_argument('--exe', default=os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'build',
@@ -58,6 +67,11 @@ def main():
         parser.error(f'need --tolerance > 0 (got {args.tolerance})')
     if not os.path.isfile(args.base):
         parser.error(f'the base input file {args.base} does not exist')
+    try:
+        classify = classifier(args.classify)
+    except ValueError as e:  # exit 1 like every bad argument of the search (2 is a failed run)
+        print(f'{NAME}: error: {e}', file=sys.stderr)
+        return 1
     for s in args.set:
         if '=' not in s:
             parser.error(f"--set {s!r}: write 'Section/Entry=value'")
@@ -85,17 +99,21 @@ def main():
         if status in ('interrupted', 'not started'):
             raise Interrupted()
         row = sweep.row(sweep.case_dir(values), values)
-        cases.append({'value': x, 'case': row['case'], 'outcome': row['outcome'], 'stop_reason': row['stop_reason'],
-                      'exit_code': row['exit_code']})
-        print(f'{parameter} = {x:.6g}: {row["outcome"]} ({status.split(" (")[0]}, {row["stop_reason"]})', flush=True)
-        return row['outcome']
+        # a failed run keeps the class 'failed' whatever the classification
+        cls = row['outcome'] if row.get('failed') else classify(row)
+        cases.append({'value': x, 'case': row['case'], 'class': cls, 'outcome': row['outcome'],
+                      'domain_protrusion': row['domain_protrusion'], 'neck_ratio': row['neck_ratio'],
+                      'stop_reason': row['stop_reason'], 'exit_code': row['exit_code']})
+        print(f'{parameter} = {x:.6g}: {cls} ({status.split(" (")[0]}, {row["stop_reason"]})', flush=True)
+        return cls
 
     result, code, error = None, 0, None
     try:
         result = bisect(evaluate, args.low, args.high, args.tolerance, geometric=args.geometric)
     except NoChange as e:
         low_outcome = e.outcomes[0]
-        error = (f'no change of outcome between {parameter} = {args.low:.6g} and {args.high:.6g}: both ends give '
+        what = 'outcome' if args.classify == 'outcome' else f'class ({args.classify})'
+        error = (f'no change of {what} between {parameter} = {args.low:.6g} and {args.high:.6g}: both ends give '
                  f'"{low_outcome}"; choose an interval whose ends differ')
         result = {'bracket': None, 'outcomes': e.outcomes, 'runs': e.runs, 'status': 'no change'}
         code = 1
@@ -108,7 +126,7 @@ def main():
                   'failed_case': case.get('case'), 'last_valid_bracket': e.bracket}
         code = 2
     except Interrupted:
-        runs = [[c['value'], c['outcome']] for c in cases]
+        runs = [[c['value'], c['class']] for c in cases]
         error = f'stopped by {signal.Signals(sweep.stopping).name} after {len(runs)} runs'
         result = {'bracket': None, 'outcomes': None, 'runs': runs, 'status': 'interrupted'}
         code = 128 + sweep.stopping
@@ -119,6 +137,7 @@ def main():
     if error:
         result['error'] = error
     result['parameter'] = parameter
+    result['classify'] = args.classify
     result['cases'] = cases
     sweep.write_table()
     write_atomically(os.path.join(args.output, 'bisection.json'), json.dumps(result, indent=1) + '\n')
@@ -126,7 +145,7 @@ def main():
         print(f'{NAME}: error: {error}. Runs: {os.path.join(args.output, "bisection.json")}', file=sys.stderr)
         return code
     low, high = result['bracket']
-    print(f'{parameter}: outcome changes from "{result["outcomes"][0]}" to "{result["outcomes"][1]}" '
+    print(f'{parameter}: the {"outcome" if args.classify == "outcome" else "class"} changes from "{result["outcomes"][0]}" to "{result["outcomes"][1]}" '
           f'between {low:.6g} and {high:.6g} ({len(result["runs"])} runs)')
     if not result['converged']:
         print(f'{NAME}: warning: the bracket is still wider than the tolerance (maximum number of runs reached)',

@@ -30,7 +30,7 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from continuation import classifier  # noqa: E402
+from membrane_workflow.critical import classifier  # noqa: E402
 from membrane_workflow.continuation import crossing, follow_branch, turning_point  # noqa: E402
 from membrane_workflow.statistics import load_statistics  # noqa: E402
 

@@ -87,7 +87,8 @@ with open(os.path.join(out, 'statistics.txt'), 'w') as f:
     f.write('# time energy domain_protrusion\n0 10 0.1\n0.5 9 0.2\n1 8.999 0.3\n')
 outcome = 'complete bud' if sigma > float(sets.get('Fake/Threshold', 800)) else 'incomplete bud'
 summary = {'stop_reason': 'end time' if code == 0 else 'step failed at t = 0.5: fake', 'failed': code == 2,
-           'outcome': outcome, 'time': 1.0, 'steps': 3, 'energy': 8.999}
+           'outcome': outcome, 'time': 1.0, 'steps': 3, 'energy': 8.999,
+           'domain_protrusion': sigma / 1000, 'neck_ratio': min(1.0, 2.5 - sigma / 400)}
 with open(os.path.join(out, 'summary.json'), 'w') as f:
     json.dump(summary, f)
 sys.exit(code)
@@ -492,6 +493,25 @@ class CriticalValue(Base):
         self.assertEqual(b['runs'], [[500.0, 'incomplete bud'], [1000.0, 'failed']])
         self.assertEqual((b['bracket'], b['last_valid_bracket']), (None, None))
         self.assertIn('the run at Material/Line tension = 1000 failed', result.stderr)
+
+    def test_classify_by_protrusion_and_neck(self):
+        # outcome changes at 800 (Fake/Threshold); protrusion sigma / 1000 crosses 0.95 at 950;
+        # neck ratio 2.5 - sigma / 400 falls below 0.4 at 840
+        result = self.critical(500, 1000, '--tolerance', '5', '--classify', 'protrusion:0.95')
+        self.assertExit(result, 0)
+        b = self.bisection()
+        self.assertTrue(b['bracket'][0] < 950 <= b['bracket'][1], b['bracket'])
+        self.assertEqual((b['outcomes'], b['classify']), (['not protruding', 'protruding'], 'protrusion:0.95'))
+        self.assertTrue(all(c['outcome'] == ('complete bud' if c['value'] > 800 else 'incomplete bud')
+                            for c in b['cases']))
+        result = self.critical(500, 1000, '--tolerance', '5', '--classify', 'neck:0.4', '--overwrite')
+        self.assertExit(result, 0)
+        b = self.bisection()
+        self.assertTrue(b['bracket'][0] <= 840 < b['bracket'][1], b['bracket'])
+        self.assertEqual(b['outcomes'], ['no neck', 'necked'])
+        result = self.critical(500, 1000, '--tolerance', '5', '--classify', 'protrusion:high')
+        self.assertExit(result, 1)
+        self.assertIn('--classify protrusion:high: expected outcome, protrusion:X or neck:X', result.stderr)
 
     def test_no_change_of_outcome(self):
         result = self.critical(630, 700, '--tolerance', '0.05', '--geometric')

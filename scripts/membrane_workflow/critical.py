@@ -12,8 +12,29 @@ or None):
 - NoChange (a ValueError): the two ends give the same outcome;
 - FailedRun: an evaluation gave an outcome in `failed` (default: 'failed'). A failed run
   has no outcome class, so it never becomes a bracket end: the search stops at once.
+
+`classifier(spec)` turns a class specification into a function of a run's summary (a dict
+with the keys of summary.json): 'outcome' (the run's own outcome: flat / incomplete bud /
+complete bud / ...), 'protrusion:X' (protruding when domain_protrusion >= X) or 'neck:X'
+(necked when neck_ratio < X). A bad specification raises ValueError.
 """
 import math
+
+
+def classifier(spec):
+    if spec == 'outcome':
+        return lambda s: s['outcome']
+    kind, _, threshold = spec.partition(':')
+    try:
+        x = float(threshold)
+    except ValueError:
+        x = None
+    if x is not None and math.isfinite(x):
+        if kind == 'protrusion':
+            return lambda s: 'protruding' if s['domain_protrusion'] >= x else 'not protruding'
+        if kind == 'neck':
+            return lambda s: 'necked' if s['neck_ratio'] < x else 'no neck'
+    raise ValueError(f'--classify {spec}: expected outcome, protrusion:X or neck:X (X a number)')
 
 
 class BisectionError(ValueError):
