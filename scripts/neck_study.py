@@ -13,6 +13,10 @@ first of these line tensions at which the uniform mesh forms a neck, 1500 if it 
 if it forms none, adaptive2 is also run at 2000.
 Case directories: results/studies/neck/<case> (a suffix -s<sigma> for sigma other than 1500).
 
+--sigma S runs the study at the line tension S (fallback 4/3 S) into results/studies/neck-s<S>/,
+reported in docs/neck-resolution-s<S>.md: at 3000 the neck closes (a complete bud) even on
+the uniform mesh, which the lower line tensions do not show.
+
 --xi X runs the same study with the transition length X in place of the file's 0.03, and every
 line tension scaled by 0.03 / X, so that sigma xi, the line tension of the sharp-interface limit,
 is the same: into results/studies/neck-xi<X>/, reported in docs/neck-resolution-xi<X>.md. The
@@ -27,7 +31,7 @@ Then the report docs/neck-resolution.md and the figure docs/images/neck-resoluti
 written from the statistics.txt and summary.json of every finished case.
 
 Usage: scripts/neck_study.py [--dry-run] [--report-only] [--max-level 3] [--exe PATH]
-           [--timeout SECONDS] [--xi X]
+           [--timeout SECONDS] [--sigma S] [--xi X]
 """
 import argparse
 import json
@@ -36,6 +40,7 @@ import re
 import signal
 import subprocess
 import sys
+import time
 
 import numpy as np
 
@@ -51,6 +56,7 @@ FIGURE = 'docs/images/neck-resolution.png'
 END_TIME = 4.0
 FILE_XI = 0.03         # the base file's Material/Transition length
 XI = FILE_XI           # --xi
+OPTIONS = []           # the options of the study, as the report's command repeats them
 SIGMA = 1500.0
 SIGMA_FALLBACK = 2000.0
 NECK_RATIO = 0.4       # Outcome/Complete neck ratio (default)
@@ -148,7 +154,7 @@ def reference_radius(u):
 # ----------------------------------------------------------------------------------------------
 # plan and runs
 
-def run_case(case, exe, timeout):
+def run_case(case, exe, timeout):  # a run stopped by the timeout keeps its last good state (SIGTERM)
     os.makedirs(os.path.dirname(case.log), exist_ok=True)
     cmd = ['/usr/bin/time', '-v'] + case.command(exe)
     print('running', case.name, flush=True)
@@ -160,6 +166,13 @@ def run_case(case, exe, timeout):
         except subprocess.TimeoutExpired:
             os.killpg(p.pid, signal.SIGTERM)  # the run's own process group: time and the solver
             p.wait()
+            # /usr/bin/time exits at once; the solver still writes its checkpoint and summary.json
+            for _ in range(600):
+                try:
+                    os.killpg(p.pid, 0)
+                except ProcessLookupError:
+                    break
+                time.sleep(0.1)
             code = 'timeout'
         log.flush()
         log.write(f'exit {code}\n')
@@ -305,7 +318,7 @@ def report(cases, exe):
              'page and its figure; `--dry-run` prints the commands):')
     L.append('')
     L.append('```sh')
-    L.append('scripts/neck_study.py' + (f' --xi {fmt(XI)}' if XI != FILE_XI else ''))
+    L.append(' '.join(['scripts/neck_study.py'] + OPTIONS))
     L.append('```')
     L.append('')
     L.append('The runs it makes (from the repository root):')
@@ -341,8 +354,17 @@ def report(cases, exe):
     L.append('Stop reasons in full:')
     L.append('')
     for a in results:
-        L.append(f"- {a['case'].name}: {a['summary']['stop_reason']}")
+        kinds = {k: n for k, n in (a['summary'].get('rejections') or {}).items() if n}
+        why = ('; rejected steps by reason: ' + ', '.join(f'{k} {n}' for k, n in kinds.items())) if kinds else ''
+        L.append(f"- {a['case'].name}: {a['summary']['stop_reason']}{why}")
     L.append('')
+    if any((a['summary'].get('rejections') or {}).get('degenerate_cell') for a in results):
+        L.append('A step is rejected as degenerate_cell when a corner of a cell would close below '
+                 '`Time stepping/Minimum cell quality` (sine 0.1). In a closing neck the cells along the diagonals '
+                 'of the input grid become rhombi (the neck shrinks them around its circumference and the local '
+                 'area constraint stretches them along it), and the smallest corner sine sits at this bound for '
+                 'step after step, so that tau stays near the value at which the next corner would close.')
+        L.append('')
 
     # the comparison
     uniforms = [a for a in results if a['case'].level == 0]
@@ -487,23 +509,35 @@ def report(cases, exe):
 
 
 def main():
+    global XI, SIGMA, SIGMA_FALLBACK, OUTPUT, DOC, FIGURE, OPTIONS
     p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     p.add_argument('--dry-run', action='store_true', help='print the commands of the cases to run')
     p.add_argument('--report-only', action='store_true', help='run nothing; write the report')
     p.add_argument('--max-level', type=int, default=3, help='highest refinement level to run (2 or 3)')
     p.add_argument('--exe', default=EXE)
     p.add_argument('--timeout', type=float, default=None, help='seconds per run')
+    p.add_argument('--sigma', type=float, default=None,
+                   help=f'line tension of the study (default {SIGMA:g}; the fallback is 4/3 of it)')
     p.add_argument('--xi', type=float, default=FILE_XI,
                    help=f'transition length (default the file\'s {FILE_XI:g}); the line tensions scale by {FILE_XI:g} / xi')
     args = p.parse_args()
     if not 0 < args.xi <= 1:
         p.error('--xi takes a transition length in (0, 1]')
-    global XI, SIGMA, SIGMA_FALLBACK, OUTPUT, DOC, FIGURE
+    if args.sigma is not None and not 0 < args.sigma < 1e6:
+        p.error('--sigma takes a line tension in (0, 1e6)')
+    OPTIONS = ([f'--sigma {fmt(args.sigma)}'] if args.sigma is not None else []) + \
+              ([f'--xi {fmt(args.xi)}'] if args.xi != FILE_XI else []) + \
+              ([f'--max-level {args.max_level}'] if args.max_level != 3 else []) + \
+              ([f'--timeout {fmt(args.timeout)}'] if args.timeout else [])
+    if args.sigma is not None:
+        SIGMA, SIGMA_FALLBACK = args.sigma, args.sigma * 4 / 3
+        OUTPUT, DOC = f'{OUTPUT}-s{fmt(SIGMA)}', f'docs/neck-resolution-s{fmt(SIGMA)}.md'
+        FIGURE = f'docs/images/neck-resolution-s{fmt(SIGMA)}.png'
     if args.xi != FILE_XI:
         XI = args.xi
         SIGMA, SIGMA_FALLBACK = SIGMA * FILE_XI / XI, SIGMA_FALLBACK * FILE_XI / XI
-        OUTPUT, DOC = f'{OUTPUT}-xi{fmt(XI)}', f'docs/neck-resolution-xi{fmt(XI)}.md'
-        FIGURE = f'docs/images/neck-resolution-xi{fmt(XI)}.png'
+        OUTPUT, DOC = f'{OUTPUT}-xi{fmt(XI)}', f'{DOC[:-3]}-xi{fmt(XI)}.md'
+        FIGURE = f'{FIGURE[:-4]}-xi{fmt(XI)}.png'
     os.chdir(ROOT)
     if args.dry_run:
         if all(c.finished for c in plan(args, execute=False)):
