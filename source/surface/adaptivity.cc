@@ -30,7 +30,8 @@ namespace Membrane
                       "resolution warning, which measures the cells there).");
     prm.declare_entry("Curvature resolution", "0.3", Patterns::Double(0.01, 10),
                       "Cells are refined until h |kappa_max| <= this (h: cell size on the surface, kappa_max: the "
-                      "largest principal curvature at its vertices), so that bud caps and necks are resolved.");
+                      "larger principal curvature of the mean H and K of the cell's vertices), so that bud caps "
+                      "and necks are resolved.");
     prm.declare_entry("Refinement memory limit", "0", Patterns::Double(0, 1e9),
                       "GB: local refinement stops (the mesh is not refined further, with a warning) when the "
                       "memory of all ranks would exceed this after refining. 0: 80 % of the memory available at "
@@ -107,19 +108,24 @@ namespace Membrane
       return phi_range(scalars, cell, phi) / h / (3 / (8 * xi));
     }
 
-    /// max |kappa_1|, |kappa_2| = |H|/2 + sqrt(H^2/4 - K) over the vertices of a cell.
+    /// The larger principal curvature of a cell, |H|/2 + sqrt(H^2/4 - K) of the mean H and K of
+    /// its vertices. The mean, not the largest value at a vertex: the projected H and K are
+    /// noisy at single vertices (where refinement left a slight kink, next to a coarse-fine
+    /// border), and the pointwise maximum flagged a ring of cells around every refined region at
+    /// each adaptation, even on a frozen surface, each refinement raising the energy and the
+    /// noise for the next one.
     double largest_principal_curvature(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
                                        const Geometry &geometry)
     {
       const auto scalar_cell = scalars.cell(cell);
-      double     kappa_max   = 0;
+      double     H = 0, K = 0;
       for (const unsigned int v : cell->vertex_indices())
         {
-          const auto   dof = scalar_cell->vertex_dof_index(v, 0);
-          const double H = geometry.mean_curvature[dof], K = geometry.gauss_curvature[dof];
-          kappa_max      = std::max(kappa_max, 0.5 * std::abs(H) + std::sqrt(std::max(0.0, 0.25 * H * H - K)));
+          const auto dof = scalar_cell->vertex_dof_index(v, 0);
+          H += geometry.mean_curvature[dof] / cell->n_vertices();
+          K += geometry.gauss_curvature[dof] / cell->n_vertices();
         }
-      return kappa_max;
+      return 0.5 * std::abs(H) + std::sqrt(std::max(0.0, 0.25 * H * H - K));
     }
   } // namespace
 

@@ -7,8 +7,8 @@
 //    3 / (4 xi) of the equilibrium profile tanh(3 s / (4 xi))), and
 //    h > xi / (Interface cells per xi). A broad profile that has not sharpened yet
 //    (the smooth bump start) is not refined for;
-//  - geometry: h |kappa| > Curvature resolution, with |kappa| estimated from the
-//    vertex values of H and K (largest principal curvature |H|/2 + sqrt(H^2/4 - K)).
+//  - geometry: h |kappa| > Curvature resolution, with |kappa| the larger principal
+//    curvature |H|/2 + sqrt(H^2/4 - K) of the mean H and K of the cell's vertices.
 // A cell is refined if an indicator asks for it and its level is below Maximum
 // refinement level; it is coarsened (down to the input mesh) if neither indicator
 // would ask for it at twice its size. Adaptation happens every Interval steps.
@@ -60,8 +60,9 @@ namespace Membrane
                                                    double transition_length, const AdaptivityOptions &options,
                                                    unsigned int base_level);
 
-  /// The largest h kappa_max over the cells (h the cell size, kappa_max the largest principal
-  /// curvature at its vertices): the angle of arc, in radians, that the most bent cell spans.
+  /// The largest h kappa_max over the cells (h the cell size, kappa_max the larger principal
+  /// curvature of the cell's mean H and K): the angle of arc, in radians, that the most bent
+  /// cell spans.
   double largest_curvature_per_cell(const Triangulation &triangulation, const Surface &surface,
                                     const Geometry &geometry);
 
