@@ -92,6 +92,7 @@ def main():
         return 1
     sweep.install_signal_handlers()
     cases = []
+    what = 'outcome' if args.classify == 'outcome' else f'class ({args.classify})'  # a run's class, in messages
 
     def evaluate(x):
         values = {parameter: x}
@@ -112,7 +113,6 @@ def main():
         result = bisect(evaluate, args.low, args.high, args.tolerance, geometric=args.geometric)
     except NoChange as e:
         low_outcome = e.outcomes[0]
-        what = 'outcome' if args.classify == 'outcome' else f'class ({args.classify})'
         error = (f'no change of {what} between {parameter} = {args.low:.6g} and {args.high:.6g}: both ends give '
                  f'"{low_outcome}"; choose an interval whose ends differ')
         result = {'bracket': None, 'outcomes': e.outcomes, 'runs': e.runs, 'status': 'no change'}
@@ -145,7 +145,7 @@ def main():
         print(f'{NAME}: error: {error}. Runs: {os.path.join(args.output, "bisection.json")}', file=sys.stderr)
         return code
     low, high = result['bracket']
-    print(f'{parameter}: the {"outcome" if args.classify == "outcome" else "class"} changes from "{result["outcomes"][0]}" to "{result["outcomes"][1]}" '
+    print(f'{parameter}: the {what} changes from "{result["outcomes"][0]}" to "{result["outcomes"][1]}" '
           f'between {low:.6g} and {high:.6g} ({len(result["runs"])} runs)')
     if not result['converged']:
         print(f'{NAME}: warning: the bracket is still wider than the tolerance (maximum number of runs reached)',

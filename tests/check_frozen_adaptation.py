@@ -11,19 +11,20 @@ region at every adaptation, each raising the energy.
 The frozen steps are the rows with 0 < tau < 1e-9.
 Usage: check_frozen_adaptation.py <dir> [--min-adaptations N]"""
 import argparse
+import os
 import sys
 
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'scripts'))
+from membrane_workflow.statistics import load_statistics  # noqa: E402
 
 parser = argparse.ArgumentParser()
 parser.add_argument("dir")
 parser.add_argument("--min-adaptations", type=int, default=4)
 args = parser.parse_args()
 
-with open(f"{args.dir}/statistics.txt") as f:
-    names = f.readline().lstrip("#").split()
-    data = np.atleast_2d(np.loadtxt(f))
-column = {n: data[:, i] for i, n in enumerate(names)}
+column = load_statistics(args.dir)
 after = (column["tau"] > 0) & (column["tau"] < 1e-9)
 steps, cells = column["step"][after], column["cells"][after]
 adaptations, jump = column["adaptations"][after], column["adaptation_energy_jump"][after]
