@@ -200,7 +200,17 @@ namespace Membrane
       return;
     last_written = step;
     TimerOutput::Scope scope(timer, "output");
-    output->write(surface, geometry, {{"phi", &phi}, {"Y", &chemical_potential}, {"gamma", &pressure}}, time, step);
+    // The local area error a_i / a_ref,i - 1 of every vertex (statistics.txt has its maximum).
+    const Vector areas      = vertex_areas(surface);
+    Vector       area_error = surface.scalar_space().make_owned();
+    for (const auto i : area_error.locally_owned_elements())
+      area_error[i] = reference_areas[i] > 0 ? areas[i] / reference_areas[i] - 1 : 0.0;
+    area_error.compress(VectorOperation::insert);
+    surface.scalar_space().constraints().distribute(area_error);
+    const Vector area_error_ghosted = surface.scalar_space().ghosted_copy(area_error);
+    output->write(surface, geometry,
+                  {{"phi", &phi}, {"Y", &chemical_potential}, {"gamma", &pressure}, {"area_error", &area_error_ghosted}},
+                  time, step);
   }
 
   std::string Simulator::curvature_resolution_note() const

@@ -43,13 +43,25 @@ if n_points is not None:
 assert np.ptp(points[:, 2]) > 1e-3, "the surface is not displaced in z"
 data = grid.GetPointData()
 assert data.GetArray('displacement') is None, "the points are displaced already: no displacement field"
-for name, components in [('phi', 1), ('Y', 1), ('gamma', 1), ('H', 1), ('K', 1), ('normal', 3)]:
+for name, components in [('phi', 1), ('Y', 1), ('gamma', 1), ('H', 1), ('K', 1), ('normal', 3), ('area_error', 1)]:
     array = data.GetArray(name)
     assert array is not None, f"field {name} missing"
     assert array.GetNumberOfComponents() == components, f"{name}: {array.GetNumberOfComponents()} components"
     values = vtk_to_numpy(array)
     assert np.all(np.isfinite(values)), f"{name} has non-finite values"
     print(f"{name:12s} range [{values.min():+.4f}, {values.max():+.4f}]")
+# The vertex area error field of the last snapshot (written at the last step) has the
+# largest magnitude that statistics.txt records for that step.
+statistics = os.path.join(directory, 'statistics.txt')
+if os.path.isfile(statistics):
+    with open(statistics) as f:
+        header = f.readline().lstrip('#').split()
+        last = [line.split() for line in f if line.strip() and not line.startswith('#')][-1]
+    recorded = float(last[header.index('area_error')])
+    largest = np.abs(vtk_to_numpy(data.GetArray('area_error'))).max()
+    assert abs(largest - recorded) <= 1e-6 * max(recorded, 1e-12) + 1e-13, \
+        f"largest |area_error| in the snapshot {largest:.6e}, statistics.txt {recorded:.6e}"
+    print(f"area_error: largest {largest:.3e} = statistics.txt {recorded:.3e}")
 level = grid.GetCellData().GetArray('level')
 assert level is not None and level.GetNumberOfTuples() == n_cells, "cell field level missing"
 
