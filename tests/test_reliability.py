@@ -330,7 +330,7 @@ def disk_write_failure_keeps_the_last_good_files():
     # under which write() fails with EFBIG once a file would grow past it, as it fails with
     # ENOSPC on a full disk (SIGXFSZ ignored, so the error reaches the program). The limit
     # lets the snapshots and the first checkpoint (step 5) through and stops the second one
-    # (step 10, whose statistics are longer).
+    # (step 10, whose statistics are longer); both sizes come from reference runs.
     import resource
     base = ['--quiet', '--set', 'Checkpoint/Interval=5', '--set', 'Output/Interval=0.0005']
     reference = fresh('write-reference')
@@ -339,8 +339,13 @@ def disk_write_failure_keeps_the_last_good_files():
     first_checkpoint = os.path.getsize(os.path.join(reference, 'checkpoint.txt'))
     largest_other = max(os.path.getsize(os.path.join(reference, n)) for n in os.listdir(reference)
                         if n != 'checkpoint.txt')
-    limit = first_checkpoint + 1000
-    require(largest_other < limit, f'set-up: a file of {largest_other} bytes would not fit under {limit}')
+    longer = fresh('write-reference-10')
+    got, output = run(base + ['--set', 'Time stepping/Maximum steps=10'] + out(longer) + [SMALL])
+    require(got == 0, f'reference run to step 10: exit code {got}', output)
+    second_checkpoint = os.path.getsize(os.path.join(longer, 'checkpoint.txt'))
+    limit = max(first_checkpoint, largest_other) + 200
+    require(limit < second_checkpoint,
+            f'set-up: the checkpoint of step 10 ({second_checkpoint} bytes) would fit under {limit}')
 
     def limit_file_size():
         signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
