@@ -19,9 +19,13 @@ the uniform mesh, which the lower line tensions do not show.
 
 --xi X runs the same study with the transition length X in place of the file's 0.03, and every
 line tension scaled by 0.03 / X, so that sigma xi, the line tension of the sharp-interface limit,
-is the same: into results/studies/neck-xi<X>/, reported in docs/neck-resolution-xi<X>.md. The
-diffuse interface (about 4 xi wide) sits in the neck, so the neck cannot become much narrower
-than about 2 xi: a thinner interface lets the bud's neck close further.
+is the same, and the pinch-off radius (the file's 0.03 = xi) scaled with xi: into
+results/studies/neck-xi<X>/, reported in docs/neck-resolution-xi<X>.md. The diffuse interface
+(about 4 xi wide) sits in the neck, so the neck cannot become much narrower than about xi:
+a thinner interface lets the bud's neck close further.
+
+--end-time T runs to T instead of 4; --min-cell-quality Q sets Time stepping/Minimum cell
+quality (the default 0.1 rejects the steps that close a corner of the rhombi in a closing neck).
 
 Every run: OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1, working directory the repository root,
 one run at a time, VTU output and checkpoints off. A case is finished when its summary.json
@@ -31,7 +35,7 @@ Then the report docs/neck-resolution.md and the figure docs/images/neck-resoluti
 written from the statistics.txt and summary.json of every finished case.
 
 Usage: scripts/neck_study.py [--dry-run] [--report-only] [--max-level 3] [--exe PATH]
-           [--timeout SECONDS] [--sigma S] [--xi X]
+           [--timeout SECONDS] [--sigma S] [--xi X] [--end-time T] [--min-cell-quality Q]
 """
 import argparse
 import json
@@ -60,7 +64,9 @@ OPTIONS = []           # the options of the study, as the report's command repea
 SIGMA = 1500.0
 SIGMA_FALLBACK = 2000.0
 NECK_RATIO = 0.4       # Outcome/Complete neck ratio (default)
-PINCH_RADIUS = 0.03    # Outcome/Pinch-off radius (default)
+FILE_PINCH_RADIUS = 0.03  # Outcome/Pinch-off radius (default)
+PINCH_RADIUS = FILE_PINCH_RADIUS  # scaled with --xi
+MIN_CELL_QUALITY = None  # --min-cell-quality (None: the default 0.1)
 CELLS_PER_XI = {2: 3.0, 3: 6.0}
 ENV = {'OMP_NUM_THREADS': '1', 'OPENBLAS_NUM_THREADS': '1'}
 
@@ -88,6 +94,10 @@ class Case:
              ('Mesh/Maximum refinement level', str(self.level))]
         if self.xi != FILE_XI:
             s.append(('Material/Transition length', fmt(self.xi)))
+        if PINCH_RADIUS != FILE_PINCH_RADIUS:
+            s.append(('Outcome/Pinch-off radius', fmt(PINCH_RADIUS)))
+        if MIN_CELL_QUALITY is not None:
+            s.append(('Time stepping/Minimum cell quality', fmt(MIN_CELL_QUALITY)))
         if self.level > 0:
             s.append(('Mesh/Interface cells per xi', fmt(CELLS_PER_XI[self.level])))
         return s
@@ -360,7 +370,7 @@ def report(cases, exe):
     L.append('')
     if any((a['summary'].get('rejections') or {}).get('degenerate_cell') for a in results):
         L.append('A step is rejected as degenerate_cell when a corner of a cell would close below '
-                 '`Time stepping/Minimum cell quality` (sine 0.1). In a closing neck the cells along the diagonals '
+                 f'`Time stepping/Minimum cell quality` (sine {fmt(MIN_CELL_QUALITY or 0.1)}). In a closing neck the cells along the diagonals '
                  'of the input grid become rhombi (the neck shrinks them around its circumference and the local '
                  'area constraint stretches them along it), and the smallest corner sine sits at this bound for '
                  'step after step, so that tau stays near the value at which the next corner would close.')
@@ -509,7 +519,7 @@ def report(cases, exe):
 
 
 def main():
-    global XI, SIGMA, SIGMA_FALLBACK, OUTPUT, DOC, FIGURE, OPTIONS
+    global XI, SIGMA, SIGMA_FALLBACK, OUTPUT, DOC, FIGURE, OPTIONS, PINCH_RADIUS, END_TIME, MIN_CELL_QUALITY
     p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     p.add_argument('--dry-run', action='store_true', help='print the commands of the cases to run')
     p.add_argument('--report-only', action='store_true', help='run nothing; write the report')
@@ -520,7 +530,14 @@ def main():
                    help=f'line tension of the study (default {SIGMA:g}; the fallback is 4/3 of it)')
     p.add_argument('--xi', type=float, default=FILE_XI,
                    help=f'transition length (default the file\'s {FILE_XI:g}); the line tensions scale by {FILE_XI:g} / xi')
+    p.add_argument('--end-time', type=float, default=END_TIME, help=f'end time of every run (default {END_TIME:g})')
+    p.add_argument('--min-cell-quality', type=float, default=None,
+                   help='Time stepping/Minimum cell quality of every run (default: the file\'s 0.1)')
     args = p.parse_args()
+    if not 0 < args.end_time <= 100:
+        p.error('--end-time takes a time in (0, 100]')
+    if args.min_cell_quality is not None and not 0 < args.min_cell_quality < 1:
+        p.error('--min-cell-quality takes a corner sine in (0, 1)')
     if not 0 < args.xi <= 1:
         p.error('--xi takes a transition length in (0, 1]')
     if args.sigma is not None and not 0 < args.sigma < 1e6:
@@ -528,13 +545,17 @@ def main():
     OPTIONS = ([f'--sigma {fmt(args.sigma)}'] if args.sigma is not None else []) + \
               ([f'--xi {fmt(args.xi)}'] if args.xi != FILE_XI else []) + \
               ([f'--max-level {args.max_level}'] if args.max_level != 3 else []) + \
-              ([f'--timeout {fmt(args.timeout)}'] if args.timeout else [])
+              ([f'--timeout {fmt(args.timeout)}'] if args.timeout else []) + \
+              ([f'--end-time {fmt(args.end_time)}'] if args.end_time != END_TIME else []) + \
+              ([f'--min-cell-quality {fmt(args.min_cell_quality)}'] if args.min_cell_quality is not None else [])
+    END_TIME, MIN_CELL_QUALITY = args.end_time, args.min_cell_quality
     if args.sigma is not None:
         SIGMA, SIGMA_FALLBACK = args.sigma, args.sigma * 4 / 3
         OUTPUT, DOC = f'{OUTPUT}-s{fmt(SIGMA)}', f'docs/neck-resolution-s{fmt(SIGMA)}.md'
         FIGURE = f'docs/images/neck-resolution-s{fmt(SIGMA)}.png'
     if args.xi != FILE_XI:
         XI = args.xi
+        PINCH_RADIUS = FILE_PINCH_RADIUS * XI / FILE_XI
         SIGMA, SIGMA_FALLBACK = SIGMA * FILE_XI / XI, SIGMA_FALLBACK * FILE_XI / XI
         OUTPUT, DOC = f'{OUTPUT}-xi{fmt(XI)}', f'{DOC[:-3]}-xi{fmt(XI)}.md'
         FIGURE = f'{FIGURE[:-4]}-xi{fmt(XI)}.png'
