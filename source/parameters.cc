@@ -145,6 +145,13 @@ namespace Membrane
                         "Projections of each step's result back onto the local area constraint (same operator, one "
                         "back-substitution each); they remove the O(|grad W|^2) error of the linearized constraint "
                         "within the step. Needs Correct area = true.");
+      prm.declare_entry("Tangential area correction", "0", Patterns::Integer(0, 10),
+                        "Newton iterations per step of a tangential vertex move that brings the vertex areas to their "
+                        "targets after the area projections (the least-squares tangential move of the linearized "
+                        "constraint, from a sparse direct solve of a surface Laplacian; each kept only if it lowers "
+                        "the largest vertex-area error; they stop at 1e-9). It removes the defects that the "
+                        "pressure-stabilized area row cannot, chiefly inside locally refined patches. 0: none. "
+                        "Needs Correct area = true.");
       prm.declare_entry("Correct mass", "true", Patterns::Bool(),
                         "Restore integral phi ds after each shape step by a constant shift of phi (reported as "
                         "shape_mass_correction). phi rides on the vertices, and the local area error left by the "
@@ -300,6 +307,7 @@ namespace Membrane
     shape_options.correct_area           = prm.get_bool("Correct area");
     shape_options.area_corrections       = prm.get_integer("Area projections");
     shape_options.area_relaxation_time   = prm.get_double("Area relaxation time");
+    shape_options.tangential_area_iterations = prm.get_integer("Tangential area correction");
     shape_options.correct_mass           = prm.get_bool("Correct mass");
     grid_control_weight                  = prm.get_double("Grid control weight");
     grid_control_rate                    = prm.get_double("Grid control rate");

@@ -57,6 +57,7 @@ namespace Membrane
     stats.set("error_estimate", error_estimate);
     stats.set("step_error", step_error);
     stats.set("area_projections", area_projections);
+    stats.set("tangential_area_moves", tangential_area_moves);
     stats.set("solver_iterations", solver_iterations);
     stats.set("cells", triangulation.n_global_active_cells());
     stats.set("dofs", surface.scalar_space().dof_handler().n_dofs());

@@ -2,6 +2,7 @@
 // when the step is rejected. Part of Simulator.
 #include <membrane/simulator.h>
 #include <membrane/surface/grid_control.h>
+#include <membrane/surface/tangential_area_correction.h>
 
 #include <cmath>
 
@@ -73,7 +74,8 @@ namespace Membrane
     // The linearized constraint leaves an O(|grad W|^2) area error in every step.
     // Projecting it out within the step (same operator, one back-substitution)
     // keeps it from being corrected by the next step, whatever its tau.
-    area_projections = 0;
+    area_projections      = 0;
+    tangential_area_moves = 0;
     const bool fixed_volume = volume_term(tau_trial).fixed && !shape_solver.volume_held_by_areas();
     if (options.correct_area || fixed_volume)
       {
@@ -105,6 +107,27 @@ namespace Membrane
             volume_pressure += correction.volume_pressure;
             step_increment += correction.increment;
             ++area_projections;
+          }
+      }
+    if (options.correct_area && options.tangential_area_iterations > 0)
+      {
+        TimerOutput::Scope scope(timer, "area projection");
+        // Tangent planes of X^m + W, not of X^m: the step may have turned them.
+        const Vector normal     = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
+        const auto   tangential = correct_areas_tangentially(surface, normal, target,
+                                                           options.tangential_area_tolerance,
+                                                           options.tangential_area_iterations);
+        tangential_area_moves = tangential.iterations;
+        if (fixed_volume && tangential.iterations > 0)
+          {
+            // The tangential moves change the enclosed volume of the bilinear surface at
+            // second order: one more volume projection restores it.
+            const ShapeUpdate correction = shape_solver.correct_area(surface, surface.scalar_space().make_owned(),
+                                                                     &timer, volume_term(tau_trial));
+            if (!apply(correction))
+              return false;
+            gamma += correction.pressure;
+            volume_pressure += correction.volume_pressure;
           }
       }
     pressure = gamma;

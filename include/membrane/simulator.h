@@ -216,7 +216,7 @@ namespace Membrane
     /// and summed over the run (F - pressure_work never increases).
     double step_pressure_work = 0, pressure_work = 0;
     double trial_end_time = 0; ///< t_{m+1} of the trial step
-    unsigned int area_projections = 0;
+    unsigned int area_projections = 0, tangential_area_moves = 0; ///< of the last step
     /// Accuracy control: the physical increments of the trial step and of the last
     /// accepted one (owned), the tau of that one (0: none, e.g. after an adaptation),
     /// the trial's error estimate relative to the tolerance, and the factor for tau
