@@ -110,7 +110,7 @@ namespace Membrane
 
     /// The least-squares tangential move that changes the vertex areas by `defect`
     /// (linearized): w = D B^T q with (B D B^T + epsilon) q = defect.
-    Vector tangential_move(const Surface &surface, const Vector &normal, const Vector &areas, Vector defect)
+    Vector tangential_move(const Surface &surface, const Vector &normal, const Vector &areas, const Vector &defect)
     {
       const FieldSpace &scalars = surface.scalar_space(), &vectors = surface.vector_space();
 
