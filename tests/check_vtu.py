@@ -14,6 +14,9 @@ import numpy as np
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'scripts'))
+from membrane_workflow.statistics import load_statistics  # noqa: E402
+
 directory = sys.argv[1]
 n_cells = int(sys.argv[2]) if sys.argv[2] != '-' else None
 n_points = int(sys.argv[3]) if len(sys.argv) > 3 and sys.argv[3] != '-' else None
@@ -54,10 +57,7 @@ for name, components in [('phi', 1), ('Y', 1), ('gamma', 1), ('H', 1), ('K', 1),
 # largest magnitude that statistics.txt records for that step.
 statistics = os.path.join(directory, 'statistics.txt')
 if os.path.isfile(statistics):
-    with open(statistics) as f:
-        header = f.readline().lstrip('#').split()
-        last = [line.split() for line in f if line.strip() and not line.startswith('#')][-1]
-    recorded = float(last[header.index('area_error')])
+    recorded = float(load_statistics(directory)['area_error'][-1])
     largest = np.abs(vtk_to_numpy(data.GetArray('area_error'))).max()
     assert abs(largest - recorded) <= 1e-6 * max(recorded, 1e-12) + 1e-13, \
         f"largest |area_error| in the snapshot {largest:.6e}, statistics.txt {recorded:.6e}"
