@@ -47,8 +47,8 @@ namespace Membrane
     vectors.setup(is_periodic);
     scalars.setup(is_periodic);
     displacement_ghosted = vectors.make_ghosted();
-    eulerian = std::make_unique<MappingQEulerian<dim, Vector, spacedim>>(
-      1, vectors.dof_handler(), displacement_ghosted);
+    eulerian             = std::make_unique<DisplacedMapping>();
+    update_mapping();
     scalars.reinit_matrix(scalar_mass.matrix);
     vectors.reinit_matrix(vector_mass.matrix);
     scalar_mass.current = vector_mass.current = false;
@@ -77,6 +77,29 @@ namespace Membrane
     vectors.constraints().distribute(constrained);
     displacement_ghosted = constrained;
     scalar_mass.current = vector_mass.current = false;
+    update_mapping();
+  }
+
+  void Surface::update_mapping()
+  {
+    // X = X_ref + D at every vertex of a locally relevant cell (read once from the ghosted
+    // vector), then the bilinear map of every cell through its four vertices: the same
+    // map as MappingQEulerian of degree 1, without per-cell vector reads in FEValues.
+    // Vertices of artificial cells keep their reference position (never integrated over).
+    std::vector<Point<spacedim>> position(triangulation.n_vertices());
+    for (unsigned int v = 0; v < position.size(); ++v)
+      position[v] = triangulation.get_vertices()[v];
+    for (const auto &cell : vectors.dof_handler().active_cell_iterators())
+      if (!cell->is_artificial())
+        for (const unsigned int v : cell->vertex_indices())
+          for (unsigned int c = 0; c < spacedim; ++c)
+            position[cell->vertex_index(v)][c] = cell->vertex(v)[c] + displacement_ghosted(cell->vertex_dof_index(v, c));
+    eulerian->initialize(triangulation, [&position](const typename Triangulation::cell_iterator &cell) {
+      std::vector<Point<spacedim>> points(GeometryInfo<dim>::vertices_per_cell);
+      for (const unsigned int v : cell->vertex_indices())
+        points[v] = position[cell->vertex_index(v)];
+      return points;
+    });
   }
 
   double Surface::area() const

@@ -1,18 +1,48 @@
 #pragma once
 // The membrane surface: a reference mesh (the periodic unit square in the plane
 // z = 0, or any closed surface mesh) and a Q1 displacement D, so that
-// X = X_ref + D. The current surface is seen through a MappingQEulerian, which
+// X = X_ref + D. The current surface is seen through a bilinear mapping (MappingQCache
+// of degree 1 through the displaced vertices, like MappingQEulerian), which
 // makes FEValues<2,3> compute surface gradients, normals and ds on Gamma = X(U).
 
 #include <membrane/surface/field_space.h>
 #include <membrane/types.h>
 
-#include <deal.II/fe/mapping_q_eulerian.h>
+#include <deal.II/fe/mapping_q_cache.h>
 
 #include <memory>
 
 namespace Membrane
 {
+  /// The bilinear map through the displaced vertices, cached per cell (MappingQCache of
+  /// degree 1). FEValues would otherwise take a cell that is a translation of the previous
+  /// one in the reference mesh as congruent on the surface too and reuse its Jacobians;
+  /// like MappingQEulerian, this mapping never reports cell similarity.
+  class DisplacedMapping : public dealii::MappingQCache<dim, spacedim>
+  {
+  public:
+    DisplacedMapping()
+      : dealii::MappingQCache<dim, spacedim>(1)
+    {}
+    std::unique_ptr<dealii::Mapping<dim, spacedim>> clone() const override
+    {
+      return std::make_unique<DisplacedMapping>(*this);
+    }
+
+  protected:
+    dealii::CellSimilarity::Similarity
+    fill_fe_values(const typename dealii::Triangulation<dim, spacedim>::cell_iterator &cell,
+                   const dealii::CellSimilarity::Similarity, const dealii::Quadrature<dim> &quadrature,
+                   const typename dealii::Mapping<dim, spacedim>::InternalDataBase &internal_data,
+                   dealii::internal::FEValuesImplementation::MappingRelatedData<dim, spacedim> &output_data)
+      const override
+    {
+      dealii::MappingQCache<dim, spacedim>::fill_fe_values(cell, dealii::CellSimilarity::invalid_next_cell,
+                                                           quadrature, internal_data, output_data);
+      return dealii::CellSimilarity::invalid_next_cell;
+    }
+  };
+
   /// Split n cells per side into n = coarse * 2^refinements with coarse odd, so
   /// that p4est works on the fewest trees.
   std::pair<unsigned int, unsigned int> factor_cells_per_side(unsigned int cells_per_side);
@@ -65,6 +95,9 @@ namespace Membrane
       bool         current = false;
     };
     mutable CachedMass scalar_mass, vector_mass;
-    std::unique_ptr<dealii::MappingQEulerian<dim, Vector, spacedim>> eulerian;
+    /// The current surface's vertex positions, cached per cell: FEValues on it costs no
+    /// reads of the (PETSc) displacement vector. Refilled by every set_displacement().
+    std::unique_ptr<DisplacedMapping> eulerian;
+    void update_mapping();
   };
 } // namespace Membrane
