@@ -57,6 +57,7 @@ namespace Membrane
     cahn_hilliard.setup();
     if (parameters.evolve_shape)
       shape_solver.setup();
+    tangential_corrector.reset();
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
         std::filesystem::create_directories(parameters.output_directory);

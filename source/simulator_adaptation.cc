@@ -204,6 +204,7 @@ namespace Membrane
     cahn_hilliard.setup();
     if (parameters.evolve_shape)
       shape_solver.setup();
+    tangential_corrector.reset();
     const FieldSpace &scalars = surface.scalar_space();
     Vector                moved = surface.vector_space().make_owned(), normal_new = moved;
     std::vector<Vector *> vectors_out = {&moved, &normal_new};
@@ -265,6 +266,7 @@ namespace Membrane
         cahn_hilliard.setup();
         if (parameters.evolve_shape)
           shape_solver.setup();
+        tangential_corrector.reset();
         set_initial_state(); // from the formulas on the finer mesh, not interpolated
       }
     pcout << "Initial mesh: " << triangulation.n_global_active_cells() << " cells, finest level "

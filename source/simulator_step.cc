@@ -2,7 +2,6 @@
 // when the step is rejected. Part of Simulator.
 #include <membrane/simulator.h>
 #include <membrane/surface/grid_control.h>
-#include <membrane/surface/tangential_area_correction.h>
 
 #include <cmath>
 
@@ -114,9 +113,9 @@ namespace Membrane
         TimerOutput::Scope scope(timer, "area projection");
         // Tangent planes of X^m + W, not of X^m: the step may have turned them.
         const Vector normal     = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
-        const auto   tangential = correct_areas_tangentially(surface, normal, target,
-                                                           options.tangential_area_tolerance,
-                                                           options.tangential_area_iterations);
+        const auto   tangential = tangential_corrector.correct(surface, normal, target,
+                                                                 options.tangential_area_tolerance,
+                                                                 options.tangential_area_iterations);
         tangential_area_moves = tangential.iterations;
         if (fixed_volume && tangential.iterations > 0)
           {

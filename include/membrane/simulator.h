@@ -27,6 +27,7 @@
 #include <membrane/parameters.h>
 #include <membrane/physics/energy.h>
 #include <membrane/shape_solver.h>
+#include <membrane/surface/tangential_area_correction.h>
 #include <membrane/surface/geometry.h>
 #include <membrane/time_step_control.h>
 
@@ -193,6 +194,7 @@ namespace Membrane
     Surface            surface;
     CahnHilliardSolver cahn_hilliard;
     ShapeSolver        shape_solver;
+    TangentialAreaCorrector tangential_corrector; ///< keeps its matrices while the mesh is unchanged
     Geometry           geometry;
     EnergyTerms        energy;
     Vector             phi, chemical_potential, pressure; ///< ghosted

@@ -28,24 +28,32 @@ namespace Membrane
 
     /// B: (B w)_i = integral psi_i div_s w ds, rows of the scalar space, columns of the
     /// vector space, both with their constraints (div_s of psi_j e_c is (grad_s psi_j)_c).
-    void assemble_area_change(const Surface &surface, SparseMatrix &B)
+    /// The pattern is made only when `new_pattern` (first use on a mesh).
+    void assemble_area_change(const Surface &surface, SparseMatrix &B, const bool new_pattern)
     {
       const FieldSpace &scalars = surface.scalar_space(), &vectors = surface.vector_space();
       const auto       &fe      = vectors.fe();
       const unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell, n_vector = fe.n_dofs_per_cell();
       std::vector<types::global_dof_index> scalar_dofs(n_vertices), vector_dofs(n_vector);
 
-      DynamicSparsityPattern pattern(scalars.dof_handler().n_dofs(), vectors.dof_handler().n_dofs(), scalars.relevant());
-      for (const auto &cell : vectors.dof_handler().active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            cell->get_dof_indices(vector_dofs);
-            scalars.cell(cell)->get_dof_indices(scalar_dofs);
-            scalars.constraints().add_entries_local_to_global(scalar_dofs, vectors.constraints(), vector_dofs, pattern,
-                                                              false);
-          }
-      SparsityTools::distribute_sparsity_pattern(pattern, scalars.owned(), scalars.communicator(), scalars.relevant());
-      B.reinit(scalars.owned(), vectors.owned(), pattern, scalars.communicator());
+      if (new_pattern)
+        {
+          DynamicSparsityPattern pattern(scalars.dof_handler().n_dofs(), vectors.dof_handler().n_dofs(),
+                                         scalars.relevant());
+          for (const auto &cell : vectors.dof_handler().active_cell_iterators())
+            if (cell->is_locally_owned())
+              {
+                cell->get_dof_indices(vector_dofs);
+                scalars.cell(cell)->get_dof_indices(scalar_dofs);
+                scalars.constraints().add_entries_local_to_global(scalar_dofs, vectors.constraints(), vector_dofs,
+                                                                  pattern, false);
+              }
+          SparsityTools::distribute_sparsity_pattern(pattern, scalars.owned(), scalars.communicator(),
+                                                     scalars.relevant());
+          B.reinit(scalars.owned(), vectors.owned(), pattern, scalars.communicator());
+        }
+      else
+        B = 0;
 
       const QGauss<dim>       quadrature(2);
       FEValues<dim, spacedim> fe_values(surface.mapping(), fe, quadrature,
@@ -72,8 +80,9 @@ namespace Membrane
 
     /// D^(1/2) = blockdiag(P_j / sqrt(a_j)) on the vector space: the tangent projector of
     /// each unconstrained vertex over the square root of its area (zero rows elsewhere).
+    /// The pattern (3 x 3 blocks) is made only when `new_pattern`.
     void assemble_tangent_scaling(const Surface &surface, const Vector &normal, const Vector &areas_ghosted,
-                                  SparseMatrix &D)
+                                  SparseMatrix &D, const bool new_pattern)
     {
       const FieldSpace &scalars = surface.scalar_space(), &vectors = surface.vector_space();
       std::vector<std::pair<std::array<types::global_dof_index, spacedim>, Tensor<2, spacedim>>> blocks;
@@ -95,12 +104,15 @@ namespace Membrane
               blocks.emplace_back(dofs, (unit_symmetric_tensor<spacedim>() - outer_product(nu, nu)) /
                                           std::sqrt(std::max(area, 1e-300)));
             }
-      DynamicSparsityPattern pattern(vectors.relevant());
-      for (const auto &[dofs, block] : blocks)
-        for (const auto row : dofs)
-          for (const auto column : dofs)
-            pattern.add(row, column);
-      D.reinit(vectors.owned(), vectors.owned(), pattern, vectors.communicator());
+      if (new_pattern)
+        {
+          DynamicSparsityPattern pattern(vectors.relevant());
+          for (const auto &[dofs, block] : blocks)
+            for (const auto row : dofs)
+              for (const auto column : dofs)
+                pattern.add(row, column);
+          D.reinit(vectors.owned(), vectors.owned(), pattern, vectors.communicator());
+        }
       for (const auto &[dofs, block] : blocks)
         for (unsigned int r = 0; r < spacedim; ++r)
           for (unsigned int c = 0; c < spacedim; ++c)
@@ -108,84 +120,144 @@ namespace Membrane
       D.compress(VectorOperation::insert);
     }
 
-    /// The least-squares tangential move that changes the vertex areas by `defect`
-    /// (linearized): w = D B^T q with (B D B^T + epsilon) q = defect.
-    Vector tangential_move(const Surface &surface, const Vector &normal, const Vector &areas, const Vector &defect)
-    {
-      const FieldSpace &scalars = surface.scalar_space(), &vectors = surface.vector_space();
-
-      SparseMatrix B, D;
-      assemble_area_change(surface, B);
-      assemble_tangent_scaling(surface, normal, scalars.ghosted_copy(areas), D);
-      Mat BD = nullptr, S = nullptr;
-      check(MatMatMult(B, D, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &BD), "MatMatMult");
-      check(MatMatTransposeMult(BD, BD, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &S), "MatMatTransposeMult");
-      // S = B D B^T is a surface Laplacian (wide stencil): the rows of constrained vertices
-      // are empty, and the checkerboard of a uniform mesh is a near-kernel. A shift of 1e-10
-      // of its largest diagonal entry makes it regular without damping the smooth modes;
-      // a move that does not lower the measured error is not kept.
-      Vec diagonal = nullptr;
-      check(MatCreateVecs(S, &diagonal, nullptr), "MatCreateVecs");
-      check(MatGetDiagonal(S, diagonal), "MatGetDiagonal");
-      PetscReal largest = 0;
-      check(VecMax(diagonal, nullptr, &largest), "VecMax");
-      check(VecDestroy(&diagonal), "VecDestroy");
-      check(MatSetOption(S, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption"); // empty rows
-      check(MatShift(S, 1e-10 * largest), "MatShift");
-
-      Vector q = scalars.make_owned();
-      KSP    ksp = nullptr;
-      PC     pc  = nullptr;
-      check(KSPCreate(scalars.communicator(), &ksp), "KSPCreate");
-      check(KSPSetOperators(ksp, S, S), "KSPSetOperators");
-      check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
-      check(KSPGetPC(ksp, &pc), "KSPGetPC");
-      check(PCSetType(pc, PCLU), "PCSetType");
-      check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
-      check(KSPSolve(ksp, defect, q), "KSPSolve");
-      check(KSPDestroy(&ksp), "KSPDestroy");
-
-      // w = D^(1/2) (B D^(1/2))^T q
-      Vector product = vectors.make_owned(), move = vectors.make_owned();
-      check(MatMultTranspose(BD, q, product), "MatMultTranspose");
-      check(MatMult(D, product, move), "MatMult");
-      check(MatDestroy(&S), "MatDestroy");
-      check(MatDestroy(&BD), "MatDestroy");
-      vectors.constraints().distribute(move);
-      return move;
-    }
   } // namespace
 
-  TangentialAreaCorrection correct_areas_tangentially(Surface &surface, const Vector &normal_ghosted,
-                                                      const Vector &target, const double tolerance,
-                                                      const unsigned int max_iterations)
+  struct TangentialAreaCorrector::Petsc
+  {
+    Mat BD = nullptr, S = nullptr, regularized = nullptr;
+    KSP ksp = nullptr;
+
+    ~Petsc()
+    {
+      // Destruction must not throw; the error codes are not checked here.
+      KSPDestroy(&ksp);
+      MatDestroy(&regularized);
+      MatDestroy(&S);
+      MatDestroy(&BD);
+    }
+  };
+
+  TangentialAreaCorrector::~TangentialAreaCorrector()
+  {
+    reset();
+  }
+
+  void TangentialAreaCorrector::reset()
+  {
+    delete petsc;
+    petsc = nullptr;
+  }
+
+  void TangentialAreaCorrector::factorize(const Surface &surface, const Vector &normal_ghosted, const Vector &areas)
+  {
+    const bool first = petsc == nullptr;
+    if (first)
+      petsc = new Petsc;
+    assemble_area_change(surface, B, first);
+    assemble_tangent_scaling(surface, normal_ghosted, surface.scalar_space().ghosted_copy(areas), D, first);
+    const MatReuse reuse = first ? MAT_INITIAL_MATRIX : MAT_REUSE_MATRIX;
+    check(MatMatMult(B, D, reuse, PETSC_DEFAULT, &petsc->BD), "MatMatMult");
+    // (PETSc 3.18 refuses MAT_REUSE_MATRIX for A A^T; its symbolic product is cheap.)
+    check(MatDestroy(&petsc->S), "MatDestroy");
+    check(MatMatTransposeMult(petsc->BD, petsc->BD, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &petsc->S),
+          "MatMatTransposeMult");
+    // S = B D B^T is a surface Laplacian (wide stencil): the rows of constrained vertices
+    // are empty, and the checkerboard of a uniform mesh is a near-kernel. A shift of 1e-10
+    // of its largest diagonal entry makes it regular without damping the smooth modes;
+    // a move that does not lower the measured error is not kept. The shift goes into a
+    // copy that keeps the added diagonal entries, so that its pattern, and with it the
+    // solver's analysis, stays the same from step to step.
+    Vec diagonal = nullptr;
+    check(MatCreateVecs(petsc->S, &diagonal, nullptr), "MatCreateVecs");
+    check(MatGetDiagonal(petsc->S, diagonal), "MatGetDiagonal");
+    PetscReal largest = 0;
+    check(VecMax(diagonal, nullptr, &largest), "VecMax");
+    check(VecDestroy(&diagonal), "VecDestroy");
+    if (first)
+      {
+        check(MatDuplicate(petsc->S, MAT_COPY_VALUES, &petsc->regularized), "MatDuplicate");
+        check(MatSetOption(petsc->regularized, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+      }
+    else
+      check(MatCopy(petsc->S, petsc->regularized, SUBSET_NONZERO_PATTERN), "MatCopy");
+    check(MatShift(petsc->regularized, 1e-10 * largest), "MatShift");
+    if (first)
+      {
+        PC pc = nullptr;
+        check(KSPCreate(surface.scalar_space().communicator(), &petsc->ksp), "KSPCreate");
+        check(KSPSetType(petsc->ksp, KSPPREONLY), "KSPSetType");
+        check(KSPGetPC(petsc->ksp, &pc), "KSPGetPC");
+        check(PCSetType(pc, PCLU), "PCSetType");
+        check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+      }
+    // Same matrix object, new values: PETSc refactorizes numerically at the next solve.
+    check(KSPSetOperators(petsc->ksp, petsc->regularized, petsc->regularized), "KSPSetOperators");
+    check(KSPSetUp(petsc->ksp), "KSPSetUp");
+  }
+
+  Vector TangentialAreaCorrector::move(const Surface &surface, const Vector &defect) const
+  {
+    const FieldSpace &vectors = surface.vector_space();
+    Vector            q       = surface.scalar_space().make_owned();
+    check(KSPSolve(petsc->ksp, defect, q), "KSPSolve");
+    // w = D^(1/2) (B D^(1/2))^T q
+    Vector product = vectors.make_owned(), result = vectors.make_owned();
+    check(MatMultTranspose(petsc->BD, q, product), "MatMultTranspose");
+    check(MatMult(D, product, result), "MatMult");
+    vectors.constraints().distribute(result);
+    return result;
+  }
+
+  TangentialAreaCorrection TangentialAreaCorrector::correct(Surface &surface, const Vector &normal_ghosted,
+                                                            const Vector &target, const double tolerance,
+                                                            const unsigned int max_iterations)
   {
     TangentialAreaCorrection result;
     Vector                   areas = vertex_areas(surface);
     result.initial_error = result.final_error = max_relative_difference(areas, target);
+    bool factorized_here = false; // at the current surface
     for (unsigned int it = 0; it < max_iterations && result.final_error > tolerance; ++it)
       {
-        Vector defect = target;
+        const bool fresh = !factorized_here;
+        if (fresh)
+          factorize(surface, normal_ghosted, areas);
+        factorized_here = true;
+        Vector defect   = target;
         defect -= areas;
-        const Vector move = tangential_move(surface, normal_ghosted, areas, defect);
-        if (!std::isfinite(move.l2_norm()))
+        const Vector step = move(surface, defect);
+        if (!std::isfinite(step.l2_norm()))
           break;
         Vector before = surface.vector_space().make_owned();
         before        = surface.displacement();
         Vector moved  = before;
-        moved += move;
+        moved += step;
         surface.set_displacement(moved);
         const Vector new_areas = vertex_areas(surface);
         const double error     = max_relative_difference(new_areas, target);
         if (!(error < result.final_error))
           {
             surface.set_displacement(before);
-            break;
+            if (fresh)
+              break;
+            factorized_here = false; // an older Jacobian failed: retry with a new one
+            continue;
           }
+        // A move that removed less than 90 % of the error: the next one needs the
+        // Jacobian of the moved surface.
+        if (error > 0.1 * result.final_error)
+          factorized_here = false;
         areas              = new_areas;
         result.final_error = error;
         ++result.iterations;
       }
     return result;
+  }
+
+  TangentialAreaCorrection correct_areas_tangentially(Surface &surface, const Vector &normal_ghosted,
+                                                      const Vector &target, const double tolerance,
+                                                      const unsigned int max_iterations)
+  {
+    TangentialAreaCorrector corrector;
+    return corrector.correct(surface, normal_ghosted, target, tolerance, max_iterations);
   }
 } // namespace Membrane
