@@ -220,7 +220,15 @@ namespace Membrane
       {
         const bool fresh = !factorized_here;
         if (fresh)
-          factorize(surface, normal_ghosted, areas);
+          try
+            {
+              factorize(surface, normal_ghosted, areas);
+            }
+          catch (...)
+            {
+              reset(); // half-built products must not be reused by the next step
+              throw;
+            }
         factorized_here = true;
         Vector defect   = target;
         defect -= areas;
