@@ -69,7 +69,7 @@ namespace Membrane
     unsigned int area_corrections = 1;     ///< projections per step onto the area constraint
     double area_tolerance         = 1e-12; ///< no projection below this relative defect
     double area_relaxation_time   = 1e-4;  ///< T_a: a step restores min(1, tau / T_a) of the area defect (0: all)
-    unsigned int tangential_area_iterations = 0; ///< Newton iterations of the tangential area correction (0: none)
+    unsigned int tangential_area_iterations = 0; ///< largest number of tangential area-correction moves per step (0: none)
     double tangential_area_tolerance = 1e-9;  ///< its target: the largest relative vertex-area error
     bool   correct_mass           = true;  ///< restore integral phi ds after the shape step
   };

@@ -1,4 +1,5 @@
 #include <membrane/solvers/linear_solver.h>
+#include <membrane/solvers/petsc_check.h>
 
 #include <deal.II/base/exceptions.h>
 
@@ -9,14 +10,6 @@
 namespace Membrane
 {
   using namespace dealii;
-
-  namespace
-  {
-    void check(const PetscErrorCode code, const char *what)
-    {
-      AssertThrow(code == 0, ExcMessage(std::string("PETSc error in ") + what + " (code " + std::to_string(code) + ")"));
-    }
-  } // namespace
 
   LinearSolver::LinearSolver(LinearSolverOptions options)
     : options(std::move(options))
@@ -39,53 +32,53 @@ namespace Membrane
 
   void LinearSolver::create(const MPI_Comm communicator)
   {
-    check(KSPCreate(communicator, &ksp), "KSPCreate");
+    check_petsc(KSPCreate(communicator, &ksp), "KSPCreate");
     PC pc;
-    check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    check_petsc(KSPGetPC(ksp, &pc), "KSPGetPC");
     if (options.type == "direct")
       {
-        check(PCSetType(pc, PCLU), "PCSetType");
-        check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+        check_petsc(PCSetType(pc, PCLU), "PCSetType");
+        check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
         if (options.reuse_iterations > 0)
           {
             // The LU factors of an earlier matrix precondition GMRES for the current
             // one; right preconditioning makes the test act on the true residual.
-            check(KSPSetType(ksp, KSPGMRES), "KSPSetType");
-            check(KSPSetPCSide(ksp, PC_RIGHT), "KSPSetPCSide");
-            check(KSPSetTolerances(ksp, options.reuse_tolerance, 0.0, PETSC_DEFAULT,
+            check_petsc(KSPSetType(ksp, KSPGMRES), "KSPSetType");
+            check_petsc(KSPSetPCSide(ksp, PC_RIGHT), "KSPSetPCSide");
+            check_petsc(KSPSetTolerances(ksp, options.reuse_tolerance, 0.0, PETSC_DEFAULT,
                                    static_cast<PetscInt>(options.reuse_iterations)),
                   "KSPSetTolerances");
           }
         else
-          check(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
+          check_petsc(KSPSetType(ksp, KSPPREONLY), "KSPSetType");
       }
     else
       {
-        check(KSPSetType(ksp, KSPGMRES), "KSPSetType");
-        check(KSPGMRESSetRestart(ksp, 100), "KSPGMRESSetRestart");
-        check(PCSetType(pc, PCBJACOBI), "PCSetType");
-        check(KSPSetTolerances(ksp, options.relative_tolerance, 0.0, PETSC_DEFAULT,
+        check_petsc(KSPSetType(ksp, KSPGMRES), "KSPSetType");
+        check_petsc(KSPGMRESSetRestart(ksp, 100), "KSPGMRESSetRestart");
+        check_petsc(PCSetType(pc, PCBJACOBI), "PCSetType");
+        check_petsc(KSPSetTolerances(ksp, options.relative_tolerance, 0.0, PETSC_DEFAULT,
                                static_cast<PetscInt>(options.max_iterations)),
               "KSPSetTolerances");
       }
     // Expert tuning through PETSc's options database (e.g. PETSC_OPTIONS="-mat_mumps_icntl_7 5").
-    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
+    check_petsc(KSPSetFromOptions(ksp), "KSPSetFromOptions");
   }
 
   void LinearSolver::factorize(const Mat matrix)
   {
     if (factorized == nullptr)
-      check(MatDuplicate(matrix, MAT_COPY_VALUES, &factorized), "MatDuplicate");
+      check_petsc(MatDuplicate(matrix, MAT_COPY_VALUES, &factorized), "MatDuplicate");
     else
-      check(MatCopy(matrix, factorized, SAME_NONZERO_PATTERN), "MatCopy");
+      check_petsc(MatCopy(matrix, factorized, SAME_NONZERO_PATTERN), "MatCopy");
     // A new state of the preconditioning matrix: PETSc refactorizes numerically
     // and keeps the symbolic analysis (the pattern is the same).
-    check(KSPSetOperators(ksp, matrix, factorized), "KSPSetOperators");
-    check(KSPSetUp(ksp), "KSPSetUp (factorization)");
+    check_petsc(KSPSetOperators(ksp, matrix, factorized), "KSPSetOperators");
+    check_petsc(KSPSetUp(ksp), "KSPSetUp (factorization)");
     PC pc;
-    check(KSPGetPC(ksp, &pc), "KSPGetPC");
+    check_petsc(KSPGetPC(ksp, &pc), "KSPGetPC");
     PCFailedReason reason;
-    check(PCGetFailedReason(pc, &reason), "PCGetFailedReason");
+    check_petsc(PCGetFailedReason(pc, &reason), "PCGetFailedReason");
     AssertThrow(reason == PC_NOERROR, ExcMessage("the LU factorization failed (PETSc PC reason " +
                                                  std::to_string(static_cast<int>(reason)) + ")"));
     factors_current = true;
@@ -97,8 +90,8 @@ namespace Membrane
     // The factors are those of the current matrix: one substitution is the direct
     // solution (iterating cannot improve on its round-off).
     PC pc;
-    check(KSPGetPC(ksp, &pc), "KSPGetPC");
-    check(PCApply(pc, rhs, solution), "PCApply");
+    check_petsc(KSPGetPC(ksp, &pc), "KSPGetPC");
+    check_petsc(PCApply(pc, rhs, solution), "PCApply");
     AssertThrow(std::isfinite(solution.l2_norm()), ExcMessage("the LU solve gave non-finite values"));
     return 1;
   }
@@ -112,7 +105,7 @@ namespace Membrane
       {
         if (factorized != nullptr)
           {
-            check(KSPSetOperators(ksp, current, factorized), "KSPSetOperators");
+            check_petsc(KSPSetOperators(ksp, current, factorized), "KSPSetOperators");
             factors_current = false;
             if (try_solve(solution, rhs))
               return iterations();
@@ -120,7 +113,7 @@ namespace Membrane
         factorize(current); // none yet, or the old factors no longer precondition well enough
         return apply_factors(solution, rhs);
       }
-    check(KSPSetOperators(ksp, current, current), "KSPSetOperators");
+    check_petsc(KSPSetOperators(ksp, current, current), "KSPSetOperators");
     if (options.type == "direct")
       ++factorizations;
     AssertThrow(try_solve(solution, rhs), ExcMessage("the linear solver (" + options.type + ") failed: " + failure));
@@ -145,9 +138,9 @@ namespace Membrane
 
   bool LinearSolver::try_solve(Vector &solution, const Vector &rhs)
   {
-    check(KSPSolve(ksp, rhs, solution), "KSPSolve");
+    check_petsc(KSPSolve(ksp, rhs, solution), "KSPSolve");
     KSPConvergedReason reason;
-    check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+    check_petsc(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
     failure = "PETSc reason " + std::to_string(static_cast<int>(reason));
     return reason > 0;
   }
@@ -156,7 +149,7 @@ namespace Membrane
   {
     PetscInt n = 1;
     if (options.type != "direct" || options.reuse_iterations > 0)
-      check(KSPGetIterationNumber(ksp, &n), "KSPGetIterationNumber");
+      check_petsc(KSPGetIterationNumber(ksp, &n), "KSPGetIterationNumber");
     return static_cast<unsigned int>(std::max<PetscInt>(n, 1));
   }
 } // namespace Membrane

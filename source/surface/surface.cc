@@ -86,9 +86,7 @@ namespace Membrane
     // vector), then the bilinear map of every cell through its four vertices: the same
     // map as MappingQEulerian of degree 1, without per-cell vector reads in FEValues.
     // Vertices of artificial cells keep their reference position (never integrated over).
-    std::vector<Point<spacedim>> position(triangulation.n_vertices());
-    for (unsigned int v = 0; v < position.size(); ++v)
-      position[v] = triangulation.get_vertices()[v];
+    std::vector<Point<spacedim>> position = triangulation.get_vertices();
     for (const auto &cell : vectors.dof_handler().active_cell_iterators())
       if (!cell->is_artificial())
         for (const unsigned int v : cell->vertex_indices())

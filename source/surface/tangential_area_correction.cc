@@ -1,3 +1,4 @@
+#include <membrane/solvers/petsc_check.h>
 #include <membrane/surface/geometry.h>
 #include <membrane/surface/tangential_area_correction.h>
 
@@ -21,11 +22,6 @@ namespace Membrane
 
   namespace
   {
-    void check(const PetscErrorCode code, const char *what)
-    {
-      AssertThrow(code == 0, ExcMessage(std::string("PETSc error in ") + what + " (code " + std::to_string(code) + ")"));
-    }
-
     /// B: (B w)_i = integral psi_i div_s w ds, rows of the scalar space, columns of the
     /// vector space, both with their constraints (div_s of psi_j e_c is (grad_s psi_j)_c).
     /// The pattern is made only when `new_pattern` (first use on a mesh).
@@ -137,29 +133,27 @@ namespace Membrane
     }
   };
 
-  TangentialAreaCorrector::~TangentialAreaCorrector()
-  {
-    reset();
-  }
+  // Defined here, where Petsc is a complete type (std::unique_ptr needs it).
+  TangentialAreaCorrector::TangentialAreaCorrector()  = default;
+  TangentialAreaCorrector::~TangentialAreaCorrector() = default;
 
   void TangentialAreaCorrector::reset()
   {
-    delete petsc;
-    petsc = nullptr;
+    petsc.reset();
   }
 
   void TangentialAreaCorrector::factorize(const Surface &surface, const Vector &normal_ghosted, const Vector &areas)
   {
     const bool first = petsc == nullptr;
     if (first)
-      petsc = new Petsc;
+      petsc = std::make_unique<Petsc>();
     assemble_area_change(surface, B, first);
     assemble_tangent_scaling(surface, normal_ghosted, surface.scalar_space().ghosted_copy(areas), D, first);
     const MatReuse reuse = first ? MAT_INITIAL_MATRIX : MAT_REUSE_MATRIX;
-    check(MatMatMult(B, D, reuse, PETSC_DEFAULT, &petsc->BD), "MatMatMult");
+    check_petsc(MatMatMult(B, D, reuse, PETSC_DEFAULT, &petsc->BD), "MatMatMult");
     // (PETSc 3.18 refuses MAT_REUSE_MATRIX for A A^T; its symbolic product is cheap.)
-    check(MatDestroy(&petsc->S), "MatDestroy");
-    check(MatMatTransposeMult(petsc->BD, petsc->BD, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &petsc->S),
+    check_petsc(MatDestroy(&petsc->S), "MatDestroy");
+    check_petsc(MatMatTransposeMult(petsc->BD, petsc->BD, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &petsc->S),
           "MatMatTransposeMult");
     // S = B D B^T is a surface Laplacian (wide stencil): the rows of constrained vertices
     // are empty, and the checkerboard of a uniform mesh is a near-kernel. A shift of 1e-10
@@ -168,42 +162,42 @@ namespace Membrane
     // copy that keeps the added diagonal entries, so that its pattern, and with it the
     // solver's analysis, stays the same from step to step.
     Vec diagonal = nullptr;
-    check(MatCreateVecs(petsc->S, &diagonal, nullptr), "MatCreateVecs");
-    check(MatGetDiagonal(petsc->S, diagonal), "MatGetDiagonal");
+    check_petsc(MatCreateVecs(petsc->S, &diagonal, nullptr), "MatCreateVecs");
+    check_petsc(MatGetDiagonal(petsc->S, diagonal), "MatGetDiagonal");
     PetscReal largest = 0;
-    check(VecMax(diagonal, nullptr, &largest), "VecMax");
-    check(VecDestroy(&diagonal), "VecDestroy");
+    check_petsc(VecMax(diagonal, nullptr, &largest), "VecMax");
+    check_petsc(VecDestroy(&diagonal), "VecDestroy");
     if (first)
       {
-        check(MatDuplicate(petsc->S, MAT_COPY_VALUES, &petsc->regularized), "MatDuplicate");
-        check(MatSetOption(petsc->regularized, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
+        check_petsc(MatDuplicate(petsc->S, MAT_COPY_VALUES, &petsc->regularized), "MatDuplicate");
+        check_petsc(MatSetOption(petsc->regularized, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE), "MatSetOption");
       }
     else
-      check(MatCopy(petsc->S, petsc->regularized, SUBSET_NONZERO_PATTERN), "MatCopy");
-    check(MatShift(petsc->regularized, 1e-10 * largest), "MatShift");
+      check_petsc(MatCopy(petsc->S, petsc->regularized, SUBSET_NONZERO_PATTERN), "MatCopy");
+    check_petsc(MatShift(petsc->regularized, 1e-10 * largest), "MatShift");
     if (first)
       {
         PC pc = nullptr;
-        check(KSPCreate(surface.scalar_space().communicator(), &petsc->ksp), "KSPCreate");
-        check(KSPSetType(petsc->ksp, KSPPREONLY), "KSPSetType");
-        check(KSPGetPC(petsc->ksp, &pc), "KSPGetPC");
-        check(PCSetType(pc, PCLU), "PCSetType");
-        check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+        check_petsc(KSPCreate(surface.scalar_space().communicator(), &petsc->ksp), "KSPCreate");
+        check_petsc(KSPSetType(petsc->ksp, KSPPREONLY), "KSPSetType");
+        check_petsc(KSPGetPC(petsc->ksp, &pc), "KSPGetPC");
+        check_petsc(PCSetType(pc, PCLU), "PCSetType");
+        check_petsc(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
       }
     // Same matrix object, new values: PETSc refactorizes numerically at the next solve.
-    check(KSPSetOperators(petsc->ksp, petsc->regularized, petsc->regularized), "KSPSetOperators");
-    check(KSPSetUp(petsc->ksp), "KSPSetUp");
+    check_petsc(KSPSetOperators(petsc->ksp, petsc->regularized, petsc->regularized), "KSPSetOperators");
+    check_petsc(KSPSetUp(petsc->ksp), "KSPSetUp");
   }
 
   Vector TangentialAreaCorrector::move(const Surface &surface, const Vector &defect) const
   {
     const FieldSpace &vectors = surface.vector_space();
     Vector            q       = surface.scalar_space().make_owned();
-    check(KSPSolve(petsc->ksp, defect, q), "KSPSolve");
+    check_petsc(KSPSolve(petsc->ksp, defect, q), "KSPSolve");
     // w = D^(1/2) (B D^(1/2))^T q
     Vector product = vectors.make_owned(), result = vectors.make_owned();
-    check(MatMultTranspose(petsc->BD, q, product), "MatMultTranspose");
-    check(MatMult(D, product, result), "MatMult");
+    check_petsc(MatMultTranspose(petsc->BD, q, product), "MatMultTranspose");
+    check_petsc(MatMult(D, product, result), "MatMult");
     vectors.constraints().distribute(result);
     return result;
   }

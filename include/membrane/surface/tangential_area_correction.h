@@ -19,6 +19,8 @@
 
 #include <membrane/surface/surface.h>
 
+#include <memory>
+
 namespace Membrane
 {
   struct TangentialAreaCorrection
@@ -37,7 +39,7 @@ namespace Membrane
   class TangentialAreaCorrector
   {
   public:
-    TangentialAreaCorrector() = default;
+    TangentialAreaCorrector();
     ~TangentialAreaCorrector();
     TangentialAreaCorrector(const TangentialAreaCorrector &)            = delete;
     TangentialAreaCorrector &operator=(const TangentialAreaCorrector &) = delete;
@@ -59,8 +61,8 @@ namespace Membrane
     Vector move(const Surface &surface, const Vector &defect) const;
 
     SparseMatrix B, D;
-    struct Petsc;                    ///< products, the regularized matrix and the solver
-    Petsc       *petsc   = nullptr;  ///< null until the first factorization on this mesh
+    struct Petsc;                 ///< products, the regularized matrix and the solver
+    std::unique_ptr<Petsc> petsc; ///< null until the first factorization on this mesh
   };
 
   /// One correction with a fresh TangentialAreaCorrector (tests, one-off uses).
