@@ -39,9 +39,10 @@ namespace Membrane
     };
   } // namespace
 
-  ShapeSolver::ShapeSolver(const Triangulation &triangulation, const bool periodic)
+  ShapeSolver::ShapeSolver(const Triangulation &triangulation, const bool periodic, const CurvatureMass curvature_mass)
     : periodic(periodic)
-    , space(triangulation, 7)
+    , curvature_mass(curvature_mass)
+    , space(triangulation, curvature_mass == CurvatureMass::lumped ? 5 : 7)
   {}
 
   void ShapeSolver::setup()
@@ -72,10 +73,14 @@ namespace Membrane
     std::vector<Tensor<1, spacedim>> grad_phi_q(n_q), nu_q(n_q);
     std::vector<Tensor<2, spacedim>> grad_nu_q(n_q);
     std::vector<PointData>           data(n_q);
-    // Tangent frames at the cell's vertices (closed surfaces, see below).
+    // Unit normals and tangent frames at the cell's vertices (closed surfaces and the
+    // lumped curvature mass, see below).
     const FieldSpace &vectors = surface.vector_space();
     dealii::Vector<double>           normal_dofs(vectors.fe().n_dofs_per_cell());
+    std::vector<Tensor<1, spacedim>> vertex_normal(GeometryInfo<dim>::vertices_per_cell);
     std::vector<std::array<Tensor<1, spacedim>, 2>> vertex_frame(GeometryInfo<dim>::vertices_per_cell);
+    const bool lumped  = curvature_mass != CurvatureMass::consistent;
+    const bool reduced = curvature_mass == CurvatureMass::lumped;
     std::vector<unsigned int>        vertex_of(n_dofs);
     for (unsigned int i = 0; i < n_dofs; ++i)
       vertex_of[i] = space.fe().system_to_component_index(i).second;
@@ -117,7 +122,7 @@ namespace Membrane
           scalar_values.get_function_values(potential, Y_q);
           vector_values[all_components].get_function_values(geometry.normal, nu_q);
           vector_values[all_components].get_function_gradients(geometry.normal, grad_nu_q);
-          if (!periodic)
+          if (!periodic || lumped)
             {
               vectors.cell(cell)->get_dof_values(geometry.normal, normal_dofs);
               for (unsigned int v = 0; v < GeometryInfo<dim>::vertices_per_cell; ++v)
@@ -126,7 +131,8 @@ namespace Membrane
                   for (unsigned int i = 0; i < normal_dofs.size(); ++i)
                     if (vectors.fe().system_to_component_index(i).second == v)
                       nu[vectors.fe().system_to_component_index(i).first] = normal_dofs[i];
-                  vertex_frame[v] = tangent_frame(nu);
+                  vertex_normal[v] = nu / nu.norm();
+                  vertex_frame[v]  = tangent_frame(nu);
                 }
             }
           // Reference edge lengths turn the unit-cell Jacobian into a_k = dX/du_k.
@@ -186,16 +192,35 @@ namespace Membrane
                   const unsigned int         ci       = component[i];
                   const double               psi      = value[i] * ds;
                   const Tensor<1, spacedim>  grad_psi = gradient[i] * ds;
+                  const Tensor<1, spacedim> &nu_i     = vertex_normal[vertex_of[i]];
+                  // The row's equation: with five fields the W_1, W_2 rows hold the tangential law.
+                  const bool tangential_row = reduced ? (ci == 1 || ci == 2) : ci >= first_tangent_component;
+                  const unsigned int tangent_k = reduced ? ci - 1 : ci - first_tangent_component;
                   for (unsigned int j = 0; j < n_dofs; ++j)
                     {
                       const unsigned int         cj = component[j];
                       const double               v  = value[j];
                       const Tensor<1, spacedim> &gv = gradient[j];
+                      const bool                 same_vertex = vertex_of[j] == vertex_of[i];
                       double                     a  = 0;
-                      if (ci < spacedim) // curvature row, psi_vec = psi e_ci
+                      if (reduced && ci == 0) // curvature row along nu_i, lumped mass
+                        {
+                          if (cj < spacedim)
+                            a = nu_i[cj] * (gv * grad_psi); // sum_c nu_i,c (grad_s W_c, grad_s psi)
+                          else if (cj == curvature_component && same_vertex)
+                            a = psi; // a_i H~_i
+                        }
+                      else if (ci < spacedim && !tangential_row) // curvature row, psi_vec = psi e_ci
                         {
                           if (cj == ci)
                             a = gv * grad_psi; // (grad_s W, grad_s psi_vec)
+                          else if (lumped) // a_i (H~_i nu_i + B~_k,i t_k,i) . e_ci
+                            {
+                              if (same_vertex && cj == curvature_component)
+                                a = nu_i[ci] * psi;
+                              else if (same_vertex && cj >= first_tangent_component)
+                                a = vertex_frame[vertex_of[i]][cj - first_tangent_component][ci] * psi;
+                            }
                           else if (cj == curvature_component)
                             a = v * d.nu[ci] * psi;
                           else if (cj >= first_tangent_component)
@@ -219,7 +244,7 @@ namespace Membrane
                         }
                       else // tangential row k
                         {
-                          const Tensor<1, spacedim> &t = test_tangent(i, ci - first_tangent_component, d);
+                          const Tensor<1, spacedim> &t = test_tangent(i, tangent_k, d);
                           if (cj < spacedim)
                             a = v * t[cj] * psi;
                           else if (cj == pressure_component)
@@ -229,14 +254,16 @@ namespace Membrane
                     }
 
                   double b = 0;
-                  if (ci < spacedim)
+                  if (tangential_row)
+                    b = tauL * d.Y * (d.grad_phi * test_tangent(i, tangent_k, d)) * psi;
+                  else if (reduced && ci == 0)
+                    b = -(nu_i * grad_psi); // -(nu_i . grad_s X^m, grad_s psi)
+                  else if (ci < spacedim)
                     b = -grad_psi[ci]; // -(grad_s X^m, grad_s psi_vec)
                   else if (ci == pressure_component)
                     b = delta * tauL * d.Y * (d.grad_phi * grad_psi); // + a_target - a^m: add_area_defect()
-                  else if (ci == curvature_component)
-                    b = tauL * (d.flux * grad_psi + d.source * psi);
                   else
-                    b = tauL * d.Y * (d.grad_phi * test_tangent(i, ci - first_tangent_component, d)) * psi;
+                    b = tauL * (d.flux * grad_psi + d.source * psi); // normal row
                   local_rhs(i) += b;
                 }
             }
@@ -274,6 +301,8 @@ namespace Membrane
                                 const double tau, const Vector &area_defect, const Vector &phi,
                                 const Vector &potential, TimerOutput *timer, const VolumeCoupling &volume_term)
   {
+    Assert(options.curvature_mass == curvature_mass,
+           ExcMessage("the curvature mass of the options must be that of the solver's layout"));
     volume = volume_term;
     {
       std::optional<TimerOutput::Scope> scope;

@@ -38,7 +38,7 @@ namespace Membrane
     , triangulation(communicator)
     , surface(triangulation, !parameters.reference.closed())
     , cahn_hilliard(triangulation, !parameters.reference.closed())
-    , shape_solver(triangulation, !parameters.reference.closed())
+    , shape_solver(triangulation, !parameters.reference.closed(), parameters.shape_options.curvature_mass)
     , step_control({parameters.adaptive, parameters.min_time_step, parameters.max_time_step, parameters.growth_factor,
                     parameters.accuracy_tolerance},
                    parameters.time_step)

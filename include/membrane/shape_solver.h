@@ -42,6 +42,19 @@
 //    with the measured defect of X^m + W as the only right-hand side gives a
 //    constrained projection W' that is added to W.
 //
+// Curvature mass (ShapeOptions::curvature_mass):
+//  - consistent: the curvature rows above as written (seven fields per vertex);
+//  - lumped: the mass term of the curvature rows lumped to the vertices,
+//      a_i (H~_i nu_i + B~_1,i t_1,i + B~_2,i t_2,i) + (grad_s W, grad_s psi_i e) = -(grad_s X^m, grad_s psi_i e),
+//    with an orthonormal frame (nu_i, t_1,i, t_2,i) at every vertex and a_i = integral psi_i ds.
+//    Then B~ sits in vertex i's three rows only, and the row's component along nu_i is
+//      a_i H~_i + sum_c nu_i,c (grad_s W_c, grad_s psi_i) = -(nu_i . grad_s X^m, grad_s psi_i)
+//    (the lumped mean-curvature vector of Dziuk and of Barrett-Garcke-Nurnberg, projected on
+//    the normal); the two tangential components only define B~. The system keeps five
+//    fields (W, gamma, H~) with this row in place of the three curvature rows: the
+//    factorization costs about (5/7)^3 = 0.36 of the consistent one. lumped_full keeps the
+//    seven fields of the lumped scheme and serves to verify the elimination.
+//
 // Closed surfaces (MODEL.md section 8; shape_solver_volume.cc): the enclosed volume
 // adds a global pressure p. Its force p n, tested with psi nu, enters the normal row
 // as - tau L_X p (n.nu, psi) on the left (p > 0 moves the surface along the outward
@@ -62,8 +75,17 @@
 
 namespace Membrane
 {
+  /// Mass of the curvature rows (see above); fixed when the ShapeSolver is built.
+  enum class CurvatureMass
+  {
+    consistent,  ///< seven fields, the reference discretization
+    lumped,      ///< five fields: B~ eliminated, the curvature row projected on nu_i
+    lumped_full  ///< seven fields of the lumped scheme (verification of `lumped`)
+  };
+
   struct ShapeOptions
   {
+    CurvatureMass curvature_mass  = CurvatureMass::consistent;
     double pressure_stabilization = 0.5; ///< delta (0: none)
     bool   correct_area           = true;  ///< feed back the defect of the vertex areas
     unsigned int area_corrections = 1;     ///< projections per step onto the area constraint
@@ -96,7 +118,8 @@ namespace Membrane
   class ShapeSolver
   {
   public:
-    ShapeSolver(const Triangulation &triangulation, bool periodic);
+    ShapeSolver(const Triangulation &triangulation, bool periodic,
+                CurvatureMass curvature_mass = CurvatureMass::consistent);
     void setup();
 
     /// One step; `area_defect` (owned, scalar space) is a_target(psi_i) - a^m(psi_i) per
@@ -138,7 +161,12 @@ namespace Membrane
     double apply_volume_coupling(Vector &solution, bool same_matrix);
 
     const bool                    periodic;
-    FieldSpace                    space; ///< components: W (0-2), gamma (3), H~ (4), B~_1 (5), B~_2 (6)
+    const CurvatureMass           curvature_mass;
+    /// Components: W (0-2), gamma (3), H~ (4), and B~_1 (5), B~_2 (6) unless lumped.
+    /// Rows: with seven fields, those tested with W are the curvature rows and those of B~ the
+    /// tangential law; with five, the W_0 row is the normal-projected curvature row and the
+    /// W_1, W_2 rows hold the tangential law.
+    FieldSpace                    space;
     SparseMatrix                  matrix;
     Vector                        rhs;
     std::unique_ptr<LinearSolver> solver; ///< kept across steps: the ordering is reused
