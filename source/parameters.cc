@@ -137,7 +137,7 @@ namespace Membrane
                         "discretization, seven coupled fields per vertex (W, gamma, H, and the two tangential parts "
                         "of the curvature vector). lumped: the mass lumped to the vertices, which lets the "
                         "tangential parts be eliminated exactly: five fields per vertex, and a factorization of the "
-                        "shape system about 2.5x cheaper (docs/model.md: accuracy against the consistent mass).");
+                        "shape system about half as expensive (docs/model.md: accuracy against the consistent mass).");
       prm.declare_entry("Correct area", "true", Patterns::Bool(),
                         "Local area conservation against a reference: each step's area equation targets the "
                         "reference area of every vertex (set at the start, carried by grid control), so area errors "
