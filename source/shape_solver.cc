@@ -195,7 +195,8 @@ namespace Membrane
                   const Tensor<1, spacedim> &nu_i     = vertex_normal[vertex_of[i]];
                   // The row's equation: with five fields the W_1, W_2 rows hold the tangential law.
                   const bool tangential_row = reduced ? (ci == 1 || ci == 2) : ci >= first_tangent_component;
-                  const unsigned int tangent_k = reduced ? ci - 1 : ci - first_tangent_component;
+                  const unsigned int tangent_k =
+                    !tangential_row ? 0 : reduced ? ci - 1 : ci - first_tangent_component; // k of a tangential row
                   for (unsigned int j = 0; j < n_dofs; ++j)
                     {
                       const unsigned int         cj = component[j];

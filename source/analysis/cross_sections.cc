@@ -58,27 +58,52 @@ namespace Membrane
   {
     const std::vector<Segment> cut   = plane_cut(quads, axis, level, period);
     const double               reach = period > 0 ? 0.5 * period : std::numeric_limits<double>::max();
-    double                     sum_r2 = 0;
+    std::vector<double>        dx(rays), dy(rays), nearest(rays, reach);
     for (unsigned int k = 0; k < rays; ++k)
       {
         const double theta = 2 * M_PI * (k + 0.5) / rays;
-        const double dx = std::cos(theta), dy = std::sin(theta);
-        double       nearest = reach;
-        for (const auto &[a, b] : cut)
+        dx[k]              = std::cos(theta);
+        dy[k]              = std::sin(theta);
+      }
+    // A segment can only meet the rays whose angles lie in its angular span seen from the
+    // axis; those (with one ray to spare either side) are tested, the others cannot hit it.
+    // A segment that passes close to the axis spans nearly pi and is tested against all.
+    const double rays_per_radian = rays / (2 * M_PI);
+    for (const auto &[a, b] : cut)
+      {
+        const double angle_a = std::atan2(a[1], a[0]);
+        double       span    = std::atan2(b[1], b[0]) - angle_a;
+        if (span > M_PI)
+          span -= 2 * M_PI;
+        else if (span < -M_PI)
+          span += 2 * M_PI;
+        int first = 0, last = static_cast<int>(rays) - 1;
+        if (std::abs(span) < 3)
           {
+            const double low = std::min(angle_a, angle_a + span);
+            first = static_cast<int>(std::floor(low * rays_per_radian - 0.5)) - 1;
+            last  = static_cast<int>(std::ceil((low + std::abs(span)) * rays_per_radian - 0.5)) + 1;
+          }
+        for (int ray = first; ray <= last; ++ray)
+          {
+            const unsigned int k = ((ray % static_cast<int>(rays)) + rays) % rays;
             // Solve t d = a + s (b - a) for t > 0, s in [0, 1].
             const double ex = b[0] - a[0], ey = b[1] - a[1];
-            const double det = ex * dy - ey * dx;
+            const double det = ex * dy[k] - ey * dx[k];
             if (det == 0)
               continue;
-            const double s = (a[1] * dx - a[0] * dy) / det;
+            const double s = (a[1] * dx[k] - a[0] * dy[k]) / det;
             const double t = (a[1] * ex - a[0] * ey) / det;
             if (s >= 0 && s <= 1 && t > 0)
-              nearest = std::min(nearest, t);
+              nearest[k] = std::min(nearest[k], t);
           }
-        if (nearest >= reach)
+      }
+    double sum_r2 = 0;
+    for (unsigned int k = 0; k < rays; ++k)
+      {
+        if (nearest[k] >= reach)
           return 0; // a ray leaves without meeting the surface: no closed section around the axis
-        sum_r2 += nearest * nearest;
+        sum_r2 += nearest[k] * nearest[k];
       }
     // The star-shaped region bounded by the nearest crossings has area pi * mean(r^2).
     return std::sqrt(sum_r2 / rays);
