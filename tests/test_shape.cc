@@ -83,6 +83,25 @@ end
         }
     return values;
   }
+
+  /// The bump of 7.3 (area 1.3) with its material and the bump profile of phi (with the
+  /// experiment's mass -0.85 if `prescribe_mass`), on a fixed-surface fixture.
+  void set_up_budding_bump(Testing::FixedSurface &setup, const bool prescribe_mass)
+  {
+    set_bump(setup.surface, 0.5, 1.3);
+    setup.update_geometry();
+    setup.material.line_tension      = 90;
+    setup.material.transition_length = 0.06;
+    setup.material.bending_rigidity  = make_linear_law(1.5, 1.5);
+    setup.material.gaussian_rigidity = make_linear_law(-1, -1);
+    setup.material.shape_mobility    = 5e-4;
+    setup.material.phase_mobility    = 0.05;
+    InitialPhaseOptions initial;
+    initial.type           = "bump";
+    initial.prescribe_mass = prescribe_mass;
+    initial.mass           = -0.85;
+    setup.set_phase(initial);
+  }
 } // namespace
 
 // A homogeneous membrane (pure phase B, kappa = 1, H0 = 0) relaxes from a shape
@@ -132,19 +151,7 @@ TEST(Shape, PressureStabilizationRemovesCheckerboard)
 {
   constexpr int          n = 16;
   Testing::FixedSurface setup(n);
-  set_bump(setup.surface, 0.5, 1.3);
-  setup.update_geometry();
-  setup.material.line_tension   = 90;
-  setup.material.transition_length = 0.06;
-  setup.material.bending_rigidity  = make_linear_law(1.5, 1.5);
-  setup.material.gaussian_rigidity = make_linear_law(-1, -1);
-  setup.material.shape_mobility    = 5e-4;
-  setup.material.phase_mobility    = 0.05;
-  InitialPhaseOptions initial;
-  initial.type           = "bump";
-  initial.prescribe_mass = true;
-  initial.mass           = -0.85;
-  setup.set_phase(initial);
+  set_up_budding_bump(setup, true);
   const double tau = 1e-3;
   Vector       next = setup.surface.scalar_space().make_owned(), potential = setup.surface.scalar_space().make_owned();
   setup.solver.step(setup.surface, setup.geometry, setup.material, setup.options, LinearSolverOptions(), tau,
@@ -186,16 +193,7 @@ TEST(Shape, LumpedCurvatureMassEliminatesTangentialPartsExactly)
 {
   const auto step = [](const int n, const CurvatureMass mass) {
     Testing::FixedSurface setup(n);
-    set_bump(setup.surface, 0.5, 1.3);
-    setup.update_geometry();
-    setup.material.line_tension      = 90;
-    setup.material.transition_length = 0.06;
-    setup.material.bending_rigidity  = make_linear_law(1.5, 1.5);
-    setup.material.gaussian_rigidity = make_linear_law(-1, -1);
-    setup.material.shape_mobility    = 5e-4;
-    InitialPhaseOptions initial;
-    initial.type = "bump";
-    setup.set_phase(initial);
+    set_up_budding_bump(setup, false);
     ShapeSolver solver(setup.tria, true, mass);
     solver.setup();
     ShapeOptions options;
@@ -235,7 +233,9 @@ TEST(Shape, LumpedCurvatureMassEliminatesTangentialPartsExactly)
       std::cout << (c == 2 ? "height increment" : "mean curvature") << ": lumped vs consistent " << coarse
                 << " (16), " << fine << " (32), observed order " << std::log2(coarse / fine) << std::endl;
       EXPECT_GT(coarse, 1e-6); // the two schemes differ
-      EXPECT_GT(std::log2(coarse / fine), 1.5);
+      // Measured 1.53 (height, not yet asymptotic on 16 cells) and 1.86 (H~); a lumping
+      // error of first order would give about 1.
+      EXPECT_GT(std::log2(coarse / fine), c == 2 ? 1.3 : 1.6);
     }
 }
 
