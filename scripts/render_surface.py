@@ -182,20 +182,31 @@ def ensure_display():
         return
     if shutil.which('Xvfb') is None:
         raise SystemExit('no DISPLAY and no Xvfb: install xvfb (scripts/install_dependencies.sh)')
-    read_end, write_end = os.pipe()
-    _xvfb = subprocess.Popen(['Xvfb', '-displayfd', str(write_end), '-screen', '0', '1280x1024x24',
-                              '-nolisten', 'tcp', '-noreset'],
-                             pass_fds=(write_end,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                             preexec_fn=_die_with_parent)
-    os.close(write_end)
-    number = b''
-    while not number.endswith(b'\n'):
-        chunk = os.read(read_end, 16)
-        if not chunk:
-            raise SystemExit('Xvfb did not start')
-        number += chunk
-    os.close(read_end)
-    os.environ['DISPLAY'] = ':' + number.decode().strip()
+    # Displays :0 to :9 are avoided: hwloc's GL plugin (loaded by MPI_Init) probes them, and a
+    # process that connects to our Xvfb dies with it when it stops ("X connection broken").
+    for number in range(99, 200):
+        if os.path.exists(f'/tmp/.X{number}-lock') or os.path.exists(f'/tmp/.X11-unix/X{number}'):
+            continue
+        read_end, write_end = os.pipe()
+        _xvfb = subprocess.Popen(['Xvfb', f':{number}', '-displayfd', str(write_end),
+                                  '-screen', '0', '1280x1024x24', '-nolisten', 'tcp', '-noreset'],
+                                 pass_fds=(write_end,), stdout=subprocess.DEVNULL,
+                                 stderr=subprocess.DEVNULL, preexec_fn=_die_with_parent)
+        os.close(write_end)
+        ready = b''
+        while not ready.endswith(b'\n'):
+            chunk = os.read(read_end, 16)
+            if not chunk:
+                break
+            ready += chunk
+        os.close(read_end)
+        if ready.endswith(b'\n'):
+            os.environ['DISPLAY'] = ':' + ready.decode().strip()
+            break
+        _xvfb.wait()  # taken meanwhile by another server: try the next number
+        _xvfb = None
+    else:
+        raise SystemExit('Xvfb did not start on any display from :99 to :199')
     atexit.register(_stop_xvfb)
 
 
