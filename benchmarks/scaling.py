@@ -4,14 +4,18 @@
 Runs a few accepted steps of experiments/7.3-budding.prm on uniform meshes (VTU output and
 checkpoints off) for every combination of --sizes, --ranks and --solvers, and reports per
 case: wall time per accepted step (setup and initial state excluded), time and peak memory
-per unknown (9 per vertex: 7 of the shape system, 2 of Cahn-Hilliard; 7 for the solver `lumped`,
-the direct solver with Shape/Curvature mass = lumped, whose shape system has 5), the split by phase
+per unknown (9 per vertex: 7 of the shape system, 2 of Cahn-Hilliard; 7 with Shape/Curvature mass =
+lumped, whose shape system has 5), the split by phase
 from the run's own timer table (the slowest rank's time), the GMRES iterations per solve,
 and the growth of the time per step against the vertex count (exponent of N between
 neighbouring sizes). Writes <output>/scaling.json and <output>/scaling.md.
 
 A case that would not fit in the memory (the simulator refuses it at start-up) or that
 fails is listed with its reason; the others go on.
+
+Solvers (--solvers): direct (MUMPS LU), gmres (block-Jacobi ILU), lumped (direct with the lumped
+curvature mass), lowrank (lumped with Linear solver/Low-rank tolerance = 1e-8), lowrank-ooc (that with
+Out of core = true; the factors go to the case's directory).
 
 Usage: scaling.py <membrane-flow> [--sizes 32,64,128,256] [--ranks 1,2] [--solvers direct,gmres,lumped]
                   [--steps 8] [--output results/benchmarks/scaling]
@@ -49,20 +53,34 @@ def timer_table(log):
     return sections, total
 
 
+# The linear-solver variants: entries of the input file (Linear solver/..., Shape/Curvature mass).
+SOLVERS = {
+    'direct': {'Type': 'direct', 'Curvature mass': 'consistent'},
+    'gmres': {'Type': 'gmres', 'Curvature mass': 'consistent'},
+    'lumped': {'Type': 'direct', 'Curvature mass': 'lumped'},
+    'lowrank': {'Type': 'direct', 'Curvature mass': 'lumped', 'Low-rank tolerance': '1e-8'},
+    'lowrank-ooc': {'Type': 'direct', 'Curvature mass': 'lumped', 'Low-rank tolerance': '1e-8', 'Out of core': 'true'},
+}
+
+
 def run_case(exe, n, ranks, solver, steps, directory):
     shutil.rmtree(directory, ignore_errors=True)
     os.makedirs(directory)
-    lumped = solver == 'lumped'
+    variant = SOLVERS[solver]
+    lumped = variant['Curvature mass'] == 'lumped'
     args = [exe, '--overwrite', '--set', f'Mesh/Cells per side={n}', '--set', 'Mesh/Maximum refinement level=0',
-            '--set', f"Linear solver/Type={'direct' if lumped else solver}",
-            '--set', f"Shape/Curvature mass={'lumped' if lumped else 'consistent'}", '--set', f'Time stepping/Maximum steps={steps}',
-            '--set', 'Time stepping/End time=10', '--set', 'Output/Write VTU=false', '--set', 'Checkpoint/Interval=0',
-            '--set', f'Output/Directory={directory}/run', os.path.join(ROOT, 'experiments', '7.3-budding.prm')]
+            '--set', f"Shape/Curvature mass={variant['Curvature mass']}"]
+    for entry in ('Type', 'Low-rank tolerance', 'Out of core'):
+        if entry in variant:
+            args += ['--set', f'Linear solver/{entry}={variant[entry]}']
+    args += ['--set', f'Time stepping/Maximum steps={steps}',
+             '--set', 'Time stepping/End time=10', '--set', 'Output/Write VTU=false', '--set', 'Checkpoint/Interval=0',
+             '--set', f'Output/Directory={directory}/run', os.path.join(ROOT, 'experiments', '7.3-budding.prm')]
     # Peak resident memory of every rank: GNU time around each process.
     rss = os.path.join(directory, 'rss')
     timed = ['sh', '-c', '/usr/bin/time -f %M -o "$0.${OMPI_COMM_WORLD_RANK:-0}" "$@"', rss] + args
     env = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1', OMPI_ALLOW_RUN_AS_ROOT='1',
-               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM='1')
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM='1', MUMPS_OOC_TMPDIR=directory)
     command = (['mpirun', '--oversubscribe', '-np', str(ranks)] + timed) if ranks > 1 else timed
     result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     case = {'cells_per_side': n, 'ranks': ranks, 'solver': solver, 'vertices': (n + 1) ** 2,
@@ -123,11 +141,14 @@ def main():
     parser.add_argument('exe')
     parser.add_argument('--sizes', default='32,64,128,256')
     parser.add_argument('--ranks', default='1,2')
-    parser.add_argument('--solvers', default='direct,gmres')
+    parser.add_argument('--solvers', default='direct,gmres', help=', '.join(SOLVERS))
     parser.add_argument('--steps', type=int, default=8)
     parser.add_argument('--output', default='results/benchmarks/scaling')
     a = parser.parse_args()
     exe = os.path.abspath(a.exe)
+    unknown = [s for s in a.solvers.split(',') if s not in SOLVERS]
+    if unknown:
+        parser.error(f"--solvers: unknown {', '.join(unknown)}; accepted: {', '.join(SOLVERS)}")
     cases = []
     for solver in a.solvers.split(','):
         for ranks in (int(r) for r in a.ranks.split(',')):

@@ -217,6 +217,15 @@ namespace Membrane
                         "iterations (0: factorize every step). The result is the same to Reuse tolerance.");
       prm.declare_entry("Reuse tolerance", "1e-12", Patterns::Double(1e-16, 1e-6),
                         "Relative residual that the GMRES iterations with reused factors must reach.");
+      prm.declare_entry("Low-rank tolerance", "0", Patterns::Double(0, 1e-4),
+                        "For Type = direct: MUMPS compresses the blocks of its fronts to low rank up to this "
+                        "relative accuracy (block low-rank factorization, ICNTL(35) = 2, CNTL(7)), and two steps "
+                        "of iterative refinement follow every solve; 0: exact LU. At 1e-8 the solution is the "
+                        "exact one to round-off and a factorization costs less from about 128 x 128 cells on "
+                        "(benchmarks/README.md).");
+      prm.declare_entry("Out of core", "false", Patterns::Bool(),
+                        "For Type = direct: MUMPS keeps the LU factors on disk, in $MUMPS_OOC_TMPDIR (default "
+                        "/tmp), instead of in memory (ICNTL(22) = 1): for meshes whose factors do not fit.");
       prm.leave_subsection();
 
       prm.enter_subsection("Output");
@@ -343,6 +352,8 @@ namespace Membrane
     linear_solver.reuse_iterations   = prm.get_integer("Reuse iterations");
     linear_solver.reuse_tolerance    = prm.get_double("Reuse tolerance");
     linear_solver.max_iterations     = prm.get_integer("Maximum iterations");
+    linear_solver.low_rank_tolerance = prm.get_double("Low-rank tolerance");
+    linear_solver.out_of_core        = prm.get_bool("Out of core");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -537,6 +548,12 @@ namespace Membrane
                                  number(phase.mass)));
       }
 
+    const LinearSolverOptions &solver = parameters.linear_solver;
+    AssertThrow(solver.type == "direct" || (solver.low_rank_tolerance == 0 && !solver.out_of_core),
+                ExcMessage("Entries <Linear solver/Low-rank tolerance> and <Linear solver/Out of core> control the "
+                           "MUMPS factorization and apply only to <Linear solver/Type> = direct; with Type = " +
+                           solver.type + " set Low-rank tolerance = 0 and Out of core = false"));
+
     AssertThrow(!parameters.output_directory.empty(),
                 ExcMessage("Entry <Output/Directory>: must not be empty; name a directory for the run's files "
                            "(e.g. results/run1)"));
@@ -553,11 +570,17 @@ namespace Membrane
     const double   safety  = 1.5;
     const double   per_rank = 200e6;
     estimate.vertices      = v;
-    const double unknowns_per_vertex = (parameters.evolve_shape ? 7 : 0) + 2;
-    if (parameters.linear_solver.type == "direct")
+    // The shape system has 7 fields per vertex, 5 with the lumped curvature mass.
+    const bool   lumped              = parameters.shape_options.curvature_mass == CurvatureMass::lumped;
+    const double unknowns_per_vertex = (parameters.evolve_shape ? (lumped ? 5 : 7) : 0) + 2;
+    const LinearSolverOptions &solver = parameters.linear_solver;
+    if (solver.type == "direct")
       {
         const double fill = 400 * std::log2(std::max(v, 2.0)) / std::log2(1089.0); // factor entries per unknown
-        estimate.bytes    = safety * 12 * fill * v * unknowns_per_vertex;
+        // Measured peaks at 256 x 256 (benchmarks/README.md): low-rank factors 0.86x,
+        // out of core with them 0.57x of the exact in-core factorization.
+        const double share = (solver.low_rank_tolerance > 0 ? 0.8 : 1.0) * (solver.out_of_core ? 0.6 : 1.0);
+        estimate.bytes     = safety * 12 * fill * v * unknowns_per_vertex * share;
       }
     else
       estimate.bytes = safety * (parameters.evolve_shape ? 24e3 : 8e3) * v;

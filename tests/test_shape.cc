@@ -239,6 +239,43 @@ TEST(Shape, LumpedCurvatureMassEliminatesTangentialPartsExactly)
     }
 }
 
+// MUMPS' block low-rank factorization and out-of-core factors (Linear solver/Low-rank
+// tolerance, Out of core) on one shape step of the bump at 64 cells per side: the factors
+// on disk give the in-memory solution to round-off. Compressed factors alone are off by
+// about 100 x the dropping tolerance (7e-7 at 1e-8); the two steps of iterative refinement
+// bring 1e-8 back to round-off, while at the largest accepted tolerance, 1e-4, a residue of
+// the compression stays visible (measured 1.7e-8): the tolerance reaches MUMPS.
+TEST(Shape, LowRankAndOutOfCoreFactorizationsKeepTheStep)
+{
+  Testing::FixedSurface setup(64);
+  set_up_budding_bump(setup, false);
+  const Vector potential = setup.surface.scalar_space().make_ghosted();
+  const auto   step      = [&](const double low_rank, const bool out_of_core) {
+    ShapeSolver solver(setup.tria, true);
+    solver.setup();
+    LinearSolverOptions linear;
+    linear.low_rank_tolerance = low_rank;
+    linear.out_of_core        = out_of_core;
+    return solver
+      .step(setup.surface, setup.geometry, setup.material, ShapeOptions(), linear, 1e-2,
+            setup.surface.scalar_space().make_owned(), setup.phi, potential)
+      .increment;
+  };
+  const Vector exact = step(0, false);
+  const auto   difference = [&](Vector other) {
+    other -= exact;
+    return other.l2_norm() / exact.l2_norm();
+  };
+  const double on_disk = difference(step(0, true)), fine = difference(step(1e-8, false)),
+               coarse = difference(step(1e-4, true));
+  std::cout << "increment relative to the exact LU: out of core " << on_disk << ", low rank 1e-8 " << fine
+            << ", low rank 1e-4 out of core " << coarse << std::endl;
+  EXPECT_LT(on_disk, 1e-13);
+  EXPECT_LT(fine, 1e-12);
+  EXPECT_GT(coarse, 1e-11);
+  EXPECT_LT(coarse, 1e-6);
+}
+
 // A short smooth coupled evolution (curved patch, smooth phi, phi-dependent
 // kappa and H0) on 10, 20, 40 and 80 cells per side with the same time steps:
 // the differences between successive meshes of the vertex positions and of phi

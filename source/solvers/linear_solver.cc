@@ -28,6 +28,7 @@ namespace Membrane
       MatDestroy(&factorized);
     ksp        = nullptr;
     factorized = nullptr;
+    configured = false;
   }
 
   void LinearSolver::create(const MPI_Comm communicator)
@@ -65,6 +66,35 @@ namespace Membrane
     check_petsc(KSPSetFromOptions(ksp), "KSPSetFromOptions");
   }
 
+  void LinearSolver::configure_factorization()
+  {
+    // MUMPS reads these at its analysis, so they go on the factor matrix once the
+    // operators are known and before the first factorization of this KSP.
+    if (configured || options.type != "direct")
+      return;
+    configured = true;
+    if (options.low_rank_tolerance <= 0 && !options.out_of_core)
+      return;
+    PC pc;
+    check_petsc(KSPGetPC(ksp, &pc), "KSPGetPC");
+    check_petsc(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
+    Mat factor;
+    check_petsc(PCFactorGetMatrix(pc, &factor), "PCFactorGetMatrix");
+    if (options.low_rank_tolerance > 0)
+      {
+        // Block low-rank fronts, the factors kept in low-rank form; blocks are
+        // compressed up to a relative error of CNTL(7).
+        check_petsc(MatMumpsSetIcntl(factor, 35, 2), "MatMumpsSetIcntl(35)");
+        check_petsc(MatMumpsSetCntl(factor, 7, options.low_rank_tolerance), "MatMumpsSetCntl(7)");
+        // Two steps of iterative refinement (a product with the exact matrix and a
+        // substitution each) take the solution from about 100 x the tolerance back to
+        // round-off at 1e-8 (test Shape.LowRankAndOutOfCoreFactorizationsKeepTheStep).
+        check_petsc(MatMumpsSetIcntl(factor, 10, -2), "MatMumpsSetIcntl(10)");
+      }
+    if (options.out_of_core)
+      check_petsc(MatMumpsSetIcntl(factor, 22, 1), "MatMumpsSetIcntl(22)");
+  }
+
   void LinearSolver::factorize(const Mat matrix)
   {
     if (factorized == nullptr)
@@ -74,6 +104,7 @@ namespace Membrane
     // A new state of the preconditioning matrix: PETSc refactorizes numerically
     // and keeps the symbolic analysis (the pattern is the same).
     check_petsc(KSPSetOperators(ksp, matrix, factorized), "KSPSetOperators");
+    configure_factorization();
     check_petsc(KSPSetUp(ksp), "KSPSetUp (factorization)");
     PC pc;
     check_petsc(KSPGetPC(ksp, &pc), "KSPGetPC");
@@ -114,6 +145,7 @@ namespace Membrane
         return apply_factors(solution, rhs);
       }
     check_petsc(KSPSetOperators(ksp, current, current), "KSPSetOperators");
+    configure_factorization();
     if (options.type == "direct")
       ++factorizations;
     AssertThrow(try_solve(solution, rhs), ExcMessage("the linear solver (" + options.type + ") failed: " + failure));

@@ -7,7 +7,10 @@
 //          With reuse_iterations > 0 the factors of an earlier matrix are kept as
 //          the preconditioner of GMRES for the next matrices (which change little
 //          from one time step to the next); only when GMRES needs more than
-//          reuse_iterations iterations is the current matrix factorized;
+//          reuse_iterations iterations is the current matrix factorized.
+//          For large meshes MUMPS can compress the fronts (block low-rank, BLR) and
+//          keep the factors on disk (out of core): less time and memory per
+//          factorization, at a relative accuracy of about low_rank_tolerance;
 //  gmres:  restarted GMRES with PETSc's block-Jacobi/ILU, for large runs.
 
 #include <membrane/types.h>
@@ -28,6 +31,12 @@ namespace Membrane
     unsigned int reuse_iterations = 0;
     /// direct with reuse: relative residual reached by those iterations.
     double reuse_tolerance = 1e-12;
+    /// direct: dropping tolerance of MUMPS' block low-rank factorization (ICNTL(35) = 2,
+    /// CNTL(7)); 0: the exact (full-rank) LU.
+    double low_rank_tolerance = 0;
+    /// direct: MUMPS writes the LU factors to disk (ICNTL(22) = 1) in $MUMPS_OOC_TMPDIR
+    /// (default /tmp) instead of holding them in memory.
+    bool out_of_core = false;
   };
 
   class LinearSolver
@@ -57,6 +66,7 @@ namespace Membrane
   private:
     void         create(MPI_Comm communicator);
     void         factorize(Mat matrix);
+    void         configure_factorization();
     bool         try_solve(Vector &solution, const Vector &rhs);
     unsigned int apply_factors(Vector &solution, const Vector &rhs);
     unsigned int iterations() const;
@@ -66,6 +76,7 @@ namespace Membrane
     Mat                 factorized     = nullptr; ///< copy of the matrix whose LU factors are in use
     Mat                 current        = nullptr; ///< the matrix of the last solve()
     bool                factors_current = false;  ///< `factorized` equals `current`
+    bool                configured      = false;  ///< MUMPS' controls set on the factor matrix
     unsigned int        factorizations = 0;
     std::string         failure;
   };
