@@ -1,5 +1,6 @@
 #include <membrane/physics/double_well.h>
 #include <membrane/shape_solver.h>
+#include <membrane/solvers/vector_access.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -282,17 +283,21 @@ namespace Membrane
     const FieldSpace &scalars = surface.scalar_space();
     const Vector      defect  = scalars.ghosted_copy(area_defect);
     Vector            rows    = space.make_owned();
-    for (const auto &cell : space.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const auto scalar_cell = scalars.cell(cell);
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const auto row = cell->vertex_dof_index(v, pressure_component);
-              if (space.owned().is_element(row) && !space.constraints().is_constrained(row))
-                rows[row] = defect[scalar_cell->vertex_dof_index(v, 0)];
-            }
-        }
+    {
+      const LocalValues defect_values(defect);
+      OwnedValues       row_values(rows);
+      for (const auto &cell : space.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto scalar_cell = scalars.cell(cell);
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                const auto row = cell->vertex_dof_index(v, pressure_component);
+                if (space.owned().is_element(row) && !space.constraints().is_constrained(row))
+                  row_values[row] = defect_values[scalar_cell->vertex_dof_index(v, 0)];
+              }
+          }
+    }
     rows.compress(VectorOperation::insert);
     rhs += rows;
   }

@@ -4,6 +4,7 @@
 #include <membrane/io/log_file.h>
 #include <membrane/io/stop_signal.h>
 #include <membrane/simulator.h>
+#include <membrane/solvers/vector_access.h>
 #include <membrane/surface/adaptivity.h>
 #include <membrane/surface/closed_surfaces.h>
 #include <membrane/surface/grid_control.h>
@@ -204,8 +205,12 @@ namespace Membrane
     // The local area error a_i / a_ref,i - 1 of every vertex (statistics.txt has its maximum).
     const Vector areas      = vertex_areas(surface);
     Vector       area_error = surface.scalar_space().make_owned();
-    for (const auto i : area_error.locally_owned_elements())
-      area_error[i] = reference_areas[i] > 0 ? areas[i] / reference_areas[i] - 1 : 0.0;
+    {
+      const LocalValues area(areas), reference(reference_areas);
+      OwnedValues       error(area_error);
+      for (const auto i : area_error.locally_owned_elements())
+        error[i] = reference[i] > 0 ? area[i] / reference[i] - 1 : 0.0;
+    }
     area_error.compress(VectorOperation::insert);
     surface.scalar_space().constraints().distribute(area_error);
     const Vector area_error_ghosted = surface.scalar_space().ghosted_copy(area_error);

@@ -1,7 +1,8 @@
 // Mesh adaptation of a run (MODEL.md section 9): marking, transfer of the state to
 // the new mesh, and what must survive it exactly. Part of Simulator.
-#include <membrane/simulator.h>
 #include <membrane/io/memory.h>
+#include <membrane/simulator.h>
+#include <membrane/solvers/vector_access.h>
 #include <membrane/surface/adaptivity.h>
 #include <membrane/surface/grid_control.h>
 
@@ -94,8 +95,12 @@ namespace Membrane
     // reference area can follow the vertices through a change of the mesh.
     const Vector areas = vertex_areas(surface);
     Vector       ratio = surface.scalar_space().make_owned();
-    for (const auto i : ratio.locally_owned_elements())
-      ratio[i] = areas[i] > 0 ? reference_areas[i] / areas[i] : 1.0;
+    {
+      const LocalValues area(areas), reference(reference_areas);
+      OwnedValues       values(ratio);
+      for (const auto i : ratio.locally_owned_elements())
+        values[i] = area[i] > 0 ? reference[i] / area[i] : 1.0;
+    }
     ratio.compress(VectorOperation::insert);
     surface.scalar_space().constraints().distribute(ratio);
     return surface.scalar_space().ghosted_copy(ratio);
@@ -104,8 +109,12 @@ namespace Membrane
   void Simulator::carry_reference_areas(const Vector &ratio_owned)
   {
     Vector carried = vertex_areas(surface);
-    for (const auto i : carried.locally_owned_elements())
-      carried[i] = carried[i] * ratio_owned[i];
+    {
+      const LocalValues ratio(ratio_owned);
+      OwnedValues       values(carried);
+      for (const auto i : carried.locally_owned_elements())
+        values[i] *= ratio[i];
+    }
     carried.compress(VectorOperation::insert);
     const double total = carried.mean_value() * carried.size();
     if (total > 0)

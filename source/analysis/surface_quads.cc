@@ -1,6 +1,9 @@
 #include <membrane/analysis/surface_quads.h>
+#include <membrane/solvers/vector_access.h>
 
 #include <deal.II/base/mpi.h>
+
+#include <optional>
 
 namespace Membrane
 {
@@ -9,7 +12,10 @@ namespace Membrane
   std::vector<SurfaceQuad> gather_surface_quads(const Surface &surface, const Vector *phi,
                                                 std::vector<double> *vertex_phi)
   {
-    std::vector<double> local, local_phi;
+    std::vector<double>        local, local_phi;
+    std::optional<LocalValues> phi_values;
+    if (phi != nullptr)
+      phi_values.emplace(*phi);
     for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -19,7 +25,7 @@ namespace Membrane
             {
               local.insert(local.end(), {X[v][0], X[v][1], X[v][2]});
               if (phi != nullptr)
-                local_phi.push_back((*phi)[scalar_cell->vertex_dof_index(v, 0)]);
+                local_phi.push_back((*phi_values)[scalar_cell->vertex_dof_index(v, 0)]);
             }
         }
     const MPI_Comm           comm = surface.vector_space().communicator();

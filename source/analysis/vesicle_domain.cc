@@ -1,5 +1,6 @@
 #include <membrane/analysis/surface_quads.h>
 #include <membrane/analysis/vesicle_domain.h>
+#include <membrane/solvers/vector_access.h>
 
 #include <deal.II/base/geometry_info.h>
 #include <deal.II/base/mpi.h>
@@ -52,7 +53,8 @@ namespace Membrane
     axis /= axis.norm();
 
     // The domain's farthest vertex and the mean height of the phi = 0 crossings on cell edges.
-    double top = -std::numeric_limits<double>::max(), rim_sum = 0, rim_count = 0;
+    double            top = -std::numeric_limits<double>::max(), rim_sum = 0, rim_count = 0;
+    const LocalValues phi_values(phi);
     for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -61,7 +63,7 @@ namespace Membrane
           double     value[4];
           for (const unsigned int v : cell->vertex_indices())
             {
-              value[v] = phi[scalar_cell->vertex_dof_index(v, 0)];
+              value[v] = phi_values[scalar_cell->vertex_dof_index(v, 0)];
               if (value[v] > 0)
                 top = std::max(top, (X[v] - Point<spacedim>(centroid)) * axis);
             }

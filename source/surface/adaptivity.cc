@@ -1,3 +1,4 @@
+#include <membrane/solvers/vector_access.h>
 #include <membrane/surface/adaptivity.h>
 
 #include <deal.II/base/geometry_info.h>
@@ -68,7 +69,7 @@ namespace Membrane
   {
     /// Smallest and largest phi over the vertices of a cell.
     std::pair<double, double> phi_bounds(const FieldSpace &scalars,
-                                         const typename Triangulation::active_cell_iterator &cell, const Vector &phi)
+                                         const typename Triangulation::active_cell_iterator &cell, const LocalValues &phi)
     {
       const auto scalar_cell = scalars.cell(cell);
       double     low = 1e300, high = -1e300;
@@ -83,14 +84,14 @@ namespace Membrane
 
     /// A vertex with |phi| < interface_phi, or a sign change (a sharp interface inside the cell).
     bool holds_interface(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
-                         const Vector &phi, const double interface_phi)
+                         const LocalValues &phi, const double interface_phi)
     {
       const auto [low, high] = phi_bounds(scalars, cell, phi);
       return low < interface_phi && high > -interface_phi;
     }
 
     double phi_range(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
-                     const Vector &phi)
+                     const LocalValues &phi)
     {
       const auto [low, high] = phi_bounds(scalars, cell, phi);
       return high - low;
@@ -103,7 +104,7 @@ namespace Membrane
     /// on a coarse one; a broad profile that has not sharpened yet (the smooth bump start)
     /// is not steep, and needs no fine cells.
     double relative_steepness(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
-                              const Vector &phi, const double h, const double xi)
+                              const LocalValues &phi, const double h, const double xi)
     {
       return phi_range(scalars, cell, phi) / h / (3 / (8 * xi));
     }
@@ -115,15 +116,15 @@ namespace Membrane
     /// each adaptation, even on a frozen surface, each refinement raising the energy and the
     /// noise for the next one.
     double largest_principal_curvature(const FieldSpace &scalars, const typename Triangulation::active_cell_iterator &cell,
-                                       const Geometry &geometry)
+                                       const LocalValues &mean_curvature, const LocalValues &gauss_curvature)
     {
       const auto scalar_cell = scalars.cell(cell);
       double     H = 0, K = 0;
       for (const unsigned int v : cell->vertex_indices())
         {
           const auto dof = scalar_cell->vertex_dof_index(v, 0);
-          H += geometry.mean_curvature[dof] / cell->n_vertices();
-          K += geometry.gauss_curvature[dof] / cell->n_vertices();
+          H += mean_curvature[dof] / cell->n_vertices();
+          K += gauss_curvature[dof] / cell->n_vertices();
         }
       return 0.5 * std::abs(H) + std::sqrt(std::max(0.0, 0.25 * H * H - K));
     }
@@ -136,14 +137,15 @@ namespace Membrane
     const FieldSpace &scalars = surface.scalar_space();
     const double      target  = xi / options.interface_cells_per_xi;
     bool              leaves  = false;
+    const LocalValues phi_values(phi), H(geometry.mean_curvature), K(geometry.gauss_curvature);
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned() && cell->level() - base_level < options.max_level)
         {
           // A margin of 1.5 on the steepness, so that a sharpening interface does not
           // trigger an adaptation every step.
           const double h = cell_size(surface, cell);
-          if ((h > target && relative_steepness(scalars, cell, phi, h, xi) > 1.5) ||
-              h * largest_principal_curvature(scalars, cell, geometry) > 2 * options.curvature_resolution)
+          if ((h > target && relative_steepness(scalars, cell, phi_values, h, xi) > 1.5) ||
+              h * largest_principal_curvature(scalars, cell, H, K) > 2 * options.curvature_resolution)
             {
               leaves = true;
               break;
@@ -154,20 +156,22 @@ namespace Membrane
 
   double largest_curvature_per_cell(const Triangulation &triangulation, const Surface &surface, const Geometry &geometry)
   {
-    double local = 0;
+    double            local = 0;
+    const LocalValues H(geometry.mean_curvature), K(geometry.gauss_curvature);
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
-        local = std::max(local, cell_size(surface, cell) * largest_principal_curvature(surface.scalar_space(), cell, geometry));
+        local = std::max(local, cell_size(surface, cell) * largest_principal_curvature(surface.scalar_space(), cell, H, K));
     return Utilities::MPI::max(local, triangulation.get_communicator());
   }
 
   double interface_cell_size(const Surface &surface, const Vector &phi, const double xi,
                              const AdaptivityOptions &options, const unsigned int base_level)
   {
-    const double target = xi / options.interface_cells_per_xi;
-    double       local  = 0;
+    const double      target = xi / options.interface_cells_per_xi;
+    double            local  = 0;
+    const LocalValues phi_values(phi);
     for (const auto &cell : surface.scalar_space().dof_handler().get_triangulation().active_cell_iterators())
-      if (cell->is_locally_owned() && holds_interface(surface.scalar_space(), cell, phi, options.interface_phi))
+      if (cell->is_locally_owned() && holds_interface(surface.scalar_space(), cell, phi_values, options.interface_phi))
         {
           double       h     = cell_size(surface, cell);
           unsigned int level = cell->level() - base_level;
@@ -193,15 +197,17 @@ namespace Membrane
     dealii::Vector<double> ones(GeometryInfo<dim>::vertices_per_cell);
     ones = 1;
     std::vector<types::global_dof_index> dofs(GeometryInfo<dim>::vertices_per_cell);
+    const LocalValues                    phi_values(phi);
     for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned() && relative_steepness(scalars, cell, phi, cell_size(surface, cell), xi) > 1)
+      if (cell->is_locally_owned() && relative_steepness(scalars, cell, phi_values, cell_size(surface, cell), xi) > 1)
         {
           scalars.cell(cell)->get_dof_indices(dofs);
           scalars.constraints().distribute_local_to_global(ones, dofs, band);
         }
     band.compress(VectorOperation::add);
     scalars.constraints().distribute(band);
-    const Vector band_ghosted = scalars.ghosted_copy(band);
+    const Vector      band_ghosted = scalars.ghosted_copy(band);
+    const LocalValues in_band_values(band_ghosted), H(geometry.mean_curvature), K(geometry.gauss_curvature);
 
     const double target = xi / options.interface_cells_per_xi;
     unsigned int refine = 0, coarsen = 0;
@@ -211,14 +217,14 @@ namespace Membrane
           const auto scalar_cell = scalars.cell(cell);
           bool       in_band     = false;
           for (const unsigned int v : cell->vertex_indices())
-            in_band = in_band || band_ghosted[scalar_cell->vertex_dof_index(v, 0)] > 0;
-          const double kappa_max = largest_principal_curvature(scalars, cell, geometry);
+            in_band = in_band || in_band_values[scalar_cell->vertex_dof_index(v, 0)] > 0;
+          const double kappa_max = largest_principal_curvature(scalars, cell, H, K);
           const double       h     = cell_size(surface, cell);
           const unsigned int level = cell->level() - base_level;
           const bool refine_here = (in_band && h > target) || h * kappa_max > options.curvature_resolution;
           // Coarsen only where neither indicator would ask for the cell at twice its size,
           // with a margin of 2 so that cells do not flip back and forth.
-          const bool coarse_enough = !in_band && relative_steepness(scalars, cell, phi, h, xi) < 0.5 &&
+          const bool coarse_enough = !in_band && relative_steepness(scalars, cell, phi_values, h, xi) < 0.5 &&
                                      2 * h * kappa_max < 0.5 * options.curvature_resolution;
           if (refine_here && level < options.max_level)
             {

@@ -1,3 +1,4 @@
+#include <membrane/solvers/vector_access.h>
 #include <membrane/surface/field_space.h>
 
 #include <deal.II/dofs/dof_tools.h>
@@ -71,11 +72,12 @@ namespace Membrane
 
   std::pair<double, double> global_range(const Vector &vector)
   {
-    double low = std::numeric_limits<double>::max(), high = -low;
+    double            low = std::numeric_limits<double>::max(), high = -low;
+    const LocalValues values(vector);
     for (const auto i : vector.locally_owned_elements())
       {
-        low  = std::min(low, vector[i]);
-        high = std::max(high, vector[i]);
+        low  = std::min(low, values[i]);
+        high = std::max(high, values[i]);
       }
     const MPI_Comm comm = vector.get_mpi_communicator();
     return {Utilities::MPI::min(low, comm), Utilities::MPI::max(high, comm)};
@@ -88,17 +90,21 @@ namespace Membrane
                       Vector            &to_owned,
                       const unsigned int to_component)
   {
-    for (const auto &cell : from_space.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const auto to_cell = to_space.cell(cell);
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const auto to_dof = to_cell->vertex_dof_index(v, to_component);
-              if (to_space.owned().is_element(to_dof))
-                to_owned[to_dof] = from_ghosted[cell->vertex_dof_index(v, from_component)];
-            }
-        }
+    {
+      const LocalValues from(from_ghosted);
+      OwnedValues       to(to_owned);
+      for (const auto &cell : from_space.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto to_cell = to_space.cell(cell);
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                const auto to_dof = to_cell->vertex_dof_index(v, to_component);
+                if (to_space.owned().is_element(to_dof))
+                  to[to_dof] = from[cell->vertex_dof_index(v, from_component)];
+              }
+          }
+    }
     to_owned.compress(VectorOperation::insert);
     to_space.constraints().distribute(to_owned);
   }

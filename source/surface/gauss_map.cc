@@ -1,3 +1,4 @@
+#include <membrane/solvers/vector_access.h>
 #include <membrane/surface/gauss_map.h>
 
 #include <deal.II/base/mpi.h>
@@ -19,7 +20,8 @@ namespace Membrane
 
   double gauss_map_area(const Surface &surface, const Vector &normal)
   {
-    double local = 0;
+    double            local = 0;
+    const LocalValues normals(normal);
     for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -27,7 +29,7 @@ namespace Membrane
           for (const unsigned int v : cell->vertex_indices())
             {
               for (unsigned int c = 0; c < spacedim; ++c)
-                n[v][c] = normal[cell->vertex_dof_index(v, c)];
+                n[v][c] = normals[cell->vertex_dof_index(v, c)];
               n[v] /= n[v].norm();
             }
           // Positive order 0 -> 1 -> 3 -> 2 (the cell normal is a_1 x a_2).

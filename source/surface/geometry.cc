@@ -1,4 +1,5 @@
 #include <membrane/solvers/projection.h>
+#include <membrane/solvers/vector_access.h>
 #include <membrane/surface/geometry.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -58,20 +59,24 @@ namespace Membrane
       }));
 
     Vector normal = space.make_owned();
-    for (const auto &cell : space.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          {
-            const auto first = cell->vertex_dof_index(v, 0);
-            if (!space.owned().is_element(first) || space.constraints().is_constrained(first))
-              continue;
-            Tensor<1, spacedim> n;
-            for (unsigned int c = 0; c < spacedim; ++c)
-              n[c] = sums[cell->vertex_dof_index(v, c)];
-            n /= n.norm();
-            for (unsigned int c = 0; c < spacedim; ++c)
-              normal[cell->vertex_dof_index(v, c)] = n[c];
-          }
+    {
+      const LocalValues sum(sums);
+      OwnedValues       out(normal);
+      for (const auto &cell : space.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const auto first = cell->vertex_dof_index(v, 0);
+              if (!space.owned().is_element(first) || space.constraints().is_constrained(first))
+                continue;
+              Tensor<1, spacedim> n;
+              for (unsigned int c = 0; c < spacedim; ++c)
+                n[c] = sum[cell->vertex_dof_index(v, c)];
+              n /= n.norm();
+              for (unsigned int c = 0; c < spacedim; ++c)
+                out[cell->vertex_dof_index(v, c)] = n[c];
+            }
+    }
     normal.compress(VectorOperation::insert);
     space.constraints().distribute(normal);
     return normal;
@@ -103,21 +108,25 @@ namespace Membrane
     const FieldSpace &vectors = surface.vector_space();
     const FieldSpace &scalars = surface.scalar_space();
     Vector            product = scalars.make_owned();
-    for (const auto &cell : vectors.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          const auto scalar_cell = scalars.cell(cell);
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const auto dof = scalar_cell->vertex_dof_index(v, 0);
-              if (!scalars.owned().is_element(dof))
-                continue;
-              double sum = 0;
-              for (unsigned int c = 0; c < spacedim; ++c)
-                sum += a[cell->vertex_dof_index(v, c)] * b[cell->vertex_dof_index(v, c)];
-              product[dof] = sum;
-            }
-        }
+    {
+      const LocalValues a_values(a), b_values(b);
+      OwnedValues       out(product);
+      for (const auto &cell : vectors.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto scalar_cell = scalars.cell(cell);
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                const auto dof = scalar_cell->vertex_dof_index(v, 0);
+                if (!scalars.owned().is_element(dof))
+                  continue;
+                double sum = 0;
+                for (unsigned int c = 0; c < spacedim; ++c)
+                  sum += a_values[cell->vertex_dof_index(v, c)] * b_values[cell->vertex_dof_index(v, c)];
+                out[dof] = sum;
+              }
+          }
+    }
     product.compress(VectorOperation::insert);
     scalars.constraints().distribute(product);
     return product;
@@ -169,10 +178,11 @@ namespace Membrane
 
   double max_relative_difference(const Vector &a, const Vector &b)
   {
-    double local = 0;
+    double            local = 0;
+    const LocalValues a_values(a), b_values(b);
     for (const auto i : b.locally_owned_elements())
-      if (b[i] > 0)
-        local = std::max(local, std::abs(a[i] - b[i]) / b[i]);
+      if (b_values[i] > 0)
+        local = std::max(local, std::abs(a_values[i] - b_values[i]) / b_values[i]);
     return Utilities::MPI::max(local, b.get_mpi_communicator());
   }
 

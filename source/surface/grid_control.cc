@@ -1,4 +1,5 @@
 #include <membrane/solvers/projection.h>
+#include <membrane/solvers/vector_access.h>
 #include <membrane/surface/geometry.h>
 #include <membrane/surface/grid_control.h>
 
@@ -45,24 +46,28 @@ namespace Membrane
     counts.compress(VectorOperation::add);
 
     Vector shift = space.make_owned();
-    for (const auto &cell : space.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          {
-            const auto first = cell->vertex_dof_index(v, 0);
-            if (!space.owned().is_element(first) || space.constraints().is_constrained(first))
-              continue;
-            Tensor<1, spacedim> d, nu;
-            for (unsigned int c = 0; c < spacedim; ++c)
-              {
-                const auto dof = cell->vertex_dof_index(v, c);
-                d[c]           = weight * sums[dof] / counts[dof];
-                nu[c]          = normal[dof];
-              }
-            d -= (d * nu) * nu; // tangential only
-            for (unsigned int c = 0; c < spacedim; ++c)
-              shift[cell->vertex_dof_index(v, c)] = d[c];
-          }
+    {
+      const LocalValues sum(sums), count(counts), normals(normal);
+      OwnedValues       out(shift);
+      for (const auto &cell : space.dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int v : cell->vertex_indices())
+            {
+              const auto first = cell->vertex_dof_index(v, 0);
+              if (!space.owned().is_element(first) || space.constraints().is_constrained(first))
+                continue;
+              Tensor<1, spacedim> d, nu;
+              for (unsigned int c = 0; c < spacedim; ++c)
+                {
+                  const auto dof = cell->vertex_dof_index(v, c);
+                  d[c]           = weight * sum[dof] / count[dof];
+                  nu[c]          = normals[dof];
+                }
+              d -= (d * nu) * nu; // tangential only
+              for (unsigned int c = 0; c < spacedim; ++c)
+                out[cell->vertex_dof_index(v, c)] = d[c];
+            }
+    }
     shift.compress(VectorOperation::insert);
     space.constraints().distribute(shift);
     return shift;
@@ -129,6 +134,7 @@ namespace Membrane
     // Corners of the reference quad in counter-clockwise order 0 -> 1 -> 3 -> 2.
     static constexpr unsigned int ring[4] = {0, 1, 3, 2};
     double                        local   = 1;
+    const LocalValues             normals(normal);
     for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -140,7 +146,7 @@ namespace Membrane
           double alignment = 0;
           for (const unsigned int v : cell->vertex_indices())
             for (unsigned int c = 0; c < spacedim; ++c)
-              alignment += unit[c] * normal[cell->vertex_dof_index(v, c)];
+              alignment += unit[c] * normals[cell->vertex_dof_index(v, c)];
           if (alignment <= 0)
             local = std::min(local, -1.0);
           for (unsigned int k = 0; k < 4; ++k)
