@@ -55,10 +55,15 @@ namespace Membrane
     return ghosted;
   }
 
-  void FieldSpace::reinit_matrix(SparseMatrix &matrix) const
+  void FieldSpace::reinit_matrix(SparseMatrix &matrix, const bool couple_components) const
   {
     DynamicSparsityPattern pattern(relevant_dofs);
-    DoFTools::make_sparsity_pattern(dofs, pattern, constraint_set, false);
+    const unsigned int     n = element.n_components();
+    Table<2, DoFTools::Coupling> coupling(n, n);
+    for (unsigned int a = 0; a < n; ++a)
+      for (unsigned int b = 0; b < n; ++b)
+        coupling(a, b) = couple_components || a == b ? DoFTools::always : DoFTools::none;
+    DoFTools::make_sparsity_pattern(dofs, coupling, pattern, constraint_set, false);
     SparsityTools::distribute_sparsity_pattern(pattern, owned_dofs, communicator(), relevant_dofs);
     matrix.reinit(owned_dofs, owned_dofs, pattern, communicator());
   }

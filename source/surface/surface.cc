@@ -50,7 +50,7 @@ namespace Membrane
     eulerian             = std::make_unique<DisplacedMapping>();
     update_mapping();
     scalars.reinit_matrix(scalar_mass.matrix);
-    vectors.reinit_matrix(vector_mass.matrix);
+    vectors.reinit_matrix(vector_mass.matrix, /*couple_components=*/false);
     scalar_mass.current = vector_mass.current = false;
   }
 

@@ -31,8 +31,10 @@ namespace Membrane
     Vector make_ghosted() const;
     /// A ghosted copy of an owned vector (with constraints already applied).
     Vector ghosted_copy(const Vector &owned_vector) const;
-    /// A sparse matrix whose pattern couples all components on each cell.
-    void reinit_matrix(SparseMatrix &matrix) const;
+    /// A sparse matrix whose pattern couples all components on each cell, or with
+    /// couple_components = false each component only with itself (a mass matrix of a
+    /// vector field: a third of the entries, and of the work of a product with it).
+    void reinit_matrix(SparseMatrix &matrix, bool couple_components = true) const;
 
     /// The cell of this space's DoFHandler that is `cell` of the triangulation.
     typename dealii::DoFHandler<dim, spacedim>::active_cell_iterator
