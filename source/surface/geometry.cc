@@ -62,20 +62,14 @@ namespace Membrane
     {
       const LocalValues sum(sums);
       OwnedValues       out(normal);
-      for (const auto &cell : space.dof_handler().active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const auto first = cell->vertex_dof_index(v, 0);
-              if (!space.owned().is_element(first) || space.constraints().is_constrained(first))
-                continue;
-              Tensor<1, spacedim> n;
-              for (unsigned int c = 0; c < spacedim; ++c)
-                n[c] = sum[cell->vertex_dof_index(v, c)];
-              n /= n.norm();
-              for (unsigned int c = 0; c < spacedim; ++c)
-                out[cell->vertex_dof_index(v, c)] = n[c];
-            }
+      for_each_free_vertex(space, [&](const auto &, unsigned int, const auto &dofs) {
+        Tensor<1, spacedim> n;
+        for (unsigned int c = 0; c < spacedim; ++c)
+          n[c] = sum[dofs[c]];
+        n /= n.norm();
+        for (unsigned int c = 0; c < spacedim; ++c)
+          out[dofs[c]] = n[c];
+      });
     }
     normal.compress(VectorOperation::insert);
     space.constraints().distribute(normal);

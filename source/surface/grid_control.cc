@@ -49,24 +49,17 @@ namespace Membrane
     {
       const LocalValues sum(sums), count(counts), normals(normal);
       OwnedValues       out(shift);
-      for (const auto &cell : space.dof_handler().active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const auto first = cell->vertex_dof_index(v, 0);
-              if (!space.owned().is_element(first) || space.constraints().is_constrained(first))
-                continue;
-              Tensor<1, spacedim> d, nu;
-              for (unsigned int c = 0; c < spacedim; ++c)
-                {
-                  const auto dof = cell->vertex_dof_index(v, c);
-                  d[c]           = weight * sum[dof] / count[dof];
-                  nu[c]          = normals[dof];
-                }
-              d -= (d * nu) * nu; // tangential only
-              for (unsigned int c = 0; c < spacedim; ++c)
-                out[cell->vertex_dof_index(v, c)] = d[c];
-            }
+      for_each_free_vertex(space, [&](const auto &, unsigned int, const auto &dofs) {
+        Tensor<1, spacedim> d, nu;
+        for (unsigned int c = 0; c < spacedim; ++c)
+          {
+            d[c]  = weight * sum[dofs[c]] / count[dofs[c]];
+            nu[c] = normals[dofs[c]];
+          }
+        d -= (d * nu) * nu; // tangential only
+        for (unsigned int c = 0; c < spacedim; ++c)
+          out[dofs[c]] = d[c];
+      });
     }
     shift.compress(VectorOperation::insert);
     space.constraints().distribute(shift);

@@ -1,4 +1,5 @@
 #include <membrane/solvers/petsc_check.h>
+#include <membrane/solvers/vector_access.h>
 #include <membrane/surface/geometry.h>
 #include <membrane/surface/tangential_area_correction.h>
 
@@ -82,24 +83,15 @@ namespace Membrane
     {
       const FieldSpace &scalars = surface.scalar_space(), &vectors = surface.vector_space();
       std::vector<std::pair<std::array<types::global_dof_index, spacedim>, Tensor<2, spacedim>>> blocks;
-      for (const auto &cell : vectors.dof_handler().active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int v : cell->vertex_indices())
-            {
-              const auto first = cell->vertex_dof_index(v, 0);
-              if (!vectors.owned().is_element(first) || vectors.constraints().is_constrained(first))
-                continue;
-              std::array<types::global_dof_index, spacedim> dofs;
-              Tensor<1, spacedim>                           nu;
-              for (unsigned int c = 0; c < spacedim; ++c)
-                {
-                  dofs[c] = cell->vertex_dof_index(v, c);
-                  nu[c]   = normal[dofs[c]];
-                }
-              const double area = areas_ghosted[scalars.cell(cell)->vertex_dof_index(v, 0)];
-              blocks.emplace_back(dofs, (unit_symmetric_tensor<spacedim>() - outer_product(nu, nu)) /
-                                          std::sqrt(std::max(area, 1e-300)));
-            }
+      const LocalValues normals(normal), areas(areas_ghosted);
+      for_each_free_vertex(vectors, [&](const auto &cell, const unsigned int v, const auto &dofs) {
+        Tensor<1, spacedim> nu;
+        for (unsigned int c = 0; c < spacedim; ++c)
+          nu[c] = normals[dofs[c]];
+        const double area = areas[scalars.cell(cell)->vertex_dof_index(v, 0)];
+        blocks.emplace_back(dofs, (unit_symmetric_tensor<spacedim>() - outer_product(nu, nu)) /
+                                    std::sqrt(std::max(area, 1e-300)));
+      });
       if (new_pattern)
         {
           DynamicSparsityPattern pattern(vectors.relevant());

@@ -8,6 +8,8 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/affine_constraints.h>
 
+#include <array>
+
 namespace Membrane
 {
   class FieldSpace
@@ -47,6 +49,26 @@ namespace Membrane
     dealii::IndexSet                      owned_dofs;
     dealii::IndexSet                      relevant_dofs;
   };
+
+  /// Calls f(cell, v, dofs) for every vertex v of a locally owned cell whose DoFs are owned
+  /// by this process and not constrained (dofs[c]: its DoF of component c < n_components);
+  /// a vertex is visited once from each of its cells.
+  template <typename Function>
+  void for_each_free_vertex(const FieldSpace &space, Function &&f)
+  {
+    std::array<dealii::types::global_dof_index, spacedim> dofs{};
+    for (const auto &cell : space.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int v : cell->vertex_indices())
+          {
+            const auto first = cell->vertex_dof_index(v, 0);
+            if (!space.owned().is_element(first) || space.constraints().is_constrained(first))
+              continue;
+            for (unsigned int c = 0; c < space.n_components(); ++c)
+              dofs[c] = cell->vertex_dof_index(v, c);
+            f(cell, v, dofs);
+          }
+  }
 
   /// Smallest and largest locally owned entry over all ranks.
   std::pair<double, double> global_range(const Vector &vector);
