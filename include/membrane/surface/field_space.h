@@ -51,11 +51,13 @@ namespace Membrane
   };
 
   /// Calls f(cell, v, dofs) for every vertex v of a locally owned cell whose DoFs are owned
-  /// by this process and not constrained (dofs[c]: its DoF of component c < n_components);
-  /// a vertex is visited once from each of its cells.
+  /// by this process and not constrained (dofs[c]: its DoF of component c < n_components,
+  /// at most spacedim: scalar and vector fields); a vertex is visited once from each of its cells.
   template <typename Function>
   void for_each_free_vertex(const FieldSpace &space, Function &&f)
   {
+    AssertThrow(space.n_components() <= spacedim,
+                dealii::ExcMessage("for_each_free_vertex: a space of at most 3 components"));
     std::array<dealii::types::global_dof_index, spacedim> dofs{};
     for (const auto &cell : space.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
