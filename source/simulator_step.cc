@@ -117,6 +117,9 @@ namespace Membrane
                                                                  options.tangential_area_tolerance,
                                                                  options.tangential_area_iterations);
         tangential_area_moves = tangential.iterations;
+        // The moves changed the surface itself: the volume projection below adds to them
+        // (starting again from the displacement before the moves would undo them).
+        moved = surface.displacement();
         if (fixed_volume && tangential.iterations > 0)
           {
             // The tangential moves change the enclosed volume of the bilinear surface at

@@ -47,8 +47,8 @@ namespace Membrane
     /// Forget matrices and factorization: the mesh (and so every pattern) changed.
     void reset();
 
-    /// Move the surface tangentially (at most `max_iterations` moves, each kept only if it
-    /// lowers the error) until the vertex areas meet `target` (owned, scalar space) to
+    /// Move the surface tangentially (at most `max_iterations` trial moves, each kept only
+    /// if it lowers the error; a rejected one is retried with more damping) until the vertex areas meet `target` (owned, scalar space) to
     /// `tolerance` (relative, largest over the vertices). `normal_ghosted`: vertex normals
     /// of the vector space for the tangent projectors.
     TangentialAreaCorrection correct(Surface &surface, const Vector &normal_ghosted, const Vector &target,
@@ -61,6 +61,7 @@ namespace Membrane
     Vector move(const Surface &surface, const Vector &defect) const;
 
     SparseMatrix B, D;
+    double       shift = 0; ///< damping of the current factorization, relative (see the .cc)
     struct Petsc;                 ///< products, the regularized matrix and the solver
     std::unique_ptr<Petsc> petsc; ///< null until the first factorization on this mesh
   };
