@@ -153,12 +153,13 @@ namespace Membrane
                         "within the step. Needs Correct area = true.");
       prm.declare_entry("Tangential area correction", "0", Patterns::Integer(0, 10),
                         "Largest number of tangential vertex moves per step that bring the vertex areas to their "
-                        "targets after the area projections (the least-squares tangential move of the linearized "
-                        "constraint, from a sparse direct solve of a surface Laplacian, factorized once per step and "
-                        "reused by the further moves; each kept only if it lowers the largest vertex-area error; "
-                        "they stop at 1e-9). It removes the defects that the pressure-stabilized area row cannot, "
-                        "chiefly inside locally refined patches (7.3: area_error below 1e-6, about 11 % more run "
-                        "time). 0: none. Needs Correct area = true.");
+                        "targets after the area projections (the damped least-squares tangential move of the "
+                        "linearized constraint, from a sparse direct solve of a surface Laplacian, factorized once "
+                        "per step and reused by the further moves; each kept only if it lowers the largest "
+                        "vertex-area error, else retried with more damping; they stop at 1e-9). It removes the "
+                        "defects that the pressure-stabilized area row cannot, inside locally refined patches and "
+                        "on curved vesicles (7.3: area_error below 1e-6, about 11 % more run time; phase-field "
+                        "vesicles: about 1e-5 instead of 1e-3 to 8e-2). 0: none. Needs Correct area = true.");
       prm.declare_entry("Correct mass", "true", Patterns::Bool(),
                         "Restore integral phi ds after each shape step by a constant shift of phi (reported as "
                         "shape_mass_correction). phi rides on the vertices, and the local area error left by the "
