@@ -1,4 +1,5 @@
 #include <membrane/cahn_hilliard.h>
+#include <membrane/solvers/cell_assembly.h>
 #include <membrane/physics/double_well.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -46,6 +47,7 @@ namespace Membrane
     const bool   linearized = options.scheme == "linearized";
     const double constant_S = options.scheme == "stabilized" ? options.stabilization : 0.0;
 
+    CellAssembler assembler(space.constraints(), matrix);
     for (const auto &cell : space.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -84,7 +86,7 @@ namespace Membrane
                 }
             }
           cell->get_dof_indices(dof_indices);
-          space.constraints().distribute_local_to_global(local_matrix, local_rhs, dof_indices, matrix, rhs);
+          assembler.add(local_matrix, local_rhs, dof_indices, rhs);
         }
     matrix.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);

@@ -1,5 +1,6 @@
 #include <membrane/physics/double_well.h>
 #include <membrane/shape_solver.h>
+#include <membrane/solvers/cell_assembly.h>
 #include <membrane/solvers/vector_access.h>
 
 #include <deal.II/base/quadrature_lib.h>
@@ -111,6 +112,7 @@ namespace Membrane
     const auto test_tangent = [&](const unsigned int i, const unsigned int k, const PointData &d) -> Tensor<1, spacedim> {
       return periodic ? d.tangent[k] : vertex_frame[vertex_of[i]][k];
     };
+    CellAssembler assembler(space.constraints(), matrix);
     for (const auto &cell : space.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -270,7 +272,7 @@ namespace Membrane
                 }
             }
           cell->get_dof_indices(dof_indices);
-          space.constraints().distribute_local_to_global(local_matrix, local_rhs, dof_indices, matrix, rhs);
+          assembler.add(local_matrix, local_rhs, dof_indices, rhs);
         }
     matrix.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);

@@ -1,4 +1,5 @@
 #include <membrane/solvers/projection.h>
+#include <membrane/solvers/cell_assembly.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -19,6 +20,7 @@ namespace Membrane
     const unsigned int      n_dofs = space.fe().n_dofs_per_cell();
     FullMatrix<double>      local(n_dofs, n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
+    CellAssembler                        assembler(space.constraints(), mass);
 
     for (const auto &cell : space.dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
@@ -32,7 +34,7 @@ namespace Membrane
                     space.fe().system_to_component_index(j).first)
                   local(i, j) += fe_values.shape_value(i, q) * fe_values.shape_value(j, q) * fe_values.JxW(q);
           cell->get_dof_indices(dof_indices);
-          space.constraints().distribute_local_to_global(local, dof_indices, mass);
+          assembler.add(local, dof_indices);
         }
     mass.compress(VectorOperation::add);
   }
