@@ -147,7 +147,8 @@ namespace Membrane
     petsc.reset();
   }
 
-  void TangentialAreaCorrector::factorize(const Surface &surface, const Vector &normal_ghosted, const Vector &areas)
+  void TangentialAreaCorrector::factorize(const Surface &surface, const Vector &normal_ghosted, const Vector &areas,
+                                          const double shift)
   {
     const bool first = petsc == nullptr;
     if (first)
@@ -211,7 +212,7 @@ namespace Membrane
                                                             const unsigned int max_iterations)
   {
     TangentialAreaCorrection result;
-    shift                          = smallest_shift;
+    double                   shift = smallest_shift; // of the current factorization
     Vector                   areas = vertex_areas(surface);
     result.initial_error = result.final_error = max_relative_difference(areas, target);
     bool factorized_here = false; // at the current surface
@@ -221,7 +222,7 @@ namespace Membrane
         if (fresh)
           try
             {
-              factorize(surface, normal_ghosted, areas);
+              factorize(surface, normal_ghosted, areas, shift);
             }
           catch (...)
             {

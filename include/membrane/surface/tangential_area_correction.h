@@ -48,20 +48,21 @@ namespace Membrane
     void reset();
 
     /// Move the surface tangentially (at most `max_iterations` trial moves, each kept only
-    /// if it lowers the error; a rejected one is retried with more damping) until the vertex areas meet `target` (owned, scalar space) to
-    /// `tolerance` (relative, largest over the vertices). `normal_ghosted`: vertex normals
+    /// if it lowers the error; a rejected one is retried with more damping) until the
+    /// vertex areas meet `target` (owned, scalar space) to `tolerance` (relative, largest
+    /// over the vertices). `normal_ghosted`: vertex normals
     /// of the vector space for the tangent projectors.
     TangentialAreaCorrection correct(Surface &surface, const Vector &normal_ghosted, const Vector &target,
                                      double tolerance, unsigned int max_iterations);
 
   private:
-    /// Assemble B and D at the current surface, form B D B^T and factorize it.
-    void factorize(const Surface &surface, const Vector &normal_ghosted, const Vector &areas);
+    /// Assemble B and D at the current surface, form B D B^T, shift it by `shift` times
+    /// its largest diagonal entry (the damping, see the .cc) and factorize it.
+    void factorize(const Surface &surface, const Vector &normal_ghosted, const Vector &areas, double shift);
     /// The linearized least-squares move w = D B^T q, (B D B^T + epsilon) q = defect.
     Vector move(const Surface &surface, const Vector &defect) const;
 
     SparseMatrix B, D;
-    double       shift = 0; ///< damping of the current factorization, relative (see the .cc)
     struct Petsc;                 ///< products, the regularized matrix and the solver
     std::unique_ptr<Petsc> petsc; ///< null until the first factorization on this mesh
   };
