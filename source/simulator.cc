@@ -122,6 +122,8 @@ namespace Membrane
     step               = static_cast<unsigned int>(scalars.at("step"));
     rejected_steps     = static_cast<unsigned int>(scalars.at("rejected_steps"));
     grid_control_skipped = static_cast<unsigned int>(scalars.at("grid_control_skipped"));
+    if (scalars.count("irreducible_error_steps")) // absent in older checkpoints
+      irreducible_error_steps = static_cast<unsigned int>(scalars.at("irreducible_error_steps"));
     for (const char *kind : rejection_kinds) // absent in checkpoints written before the count by kind
       if (scalars.count(std::string("rejected_") + kind))
         rejections[kind] = static_cast<unsigned int>(scalars.at(std::string("rejected_") + kind));
@@ -328,11 +330,12 @@ namespace Membrane
     time += trial;
     ++step;
     grid_control_skipped += grid_move_skipped;
+    irreducible_error_steps += local_error_irreducible;
     pressure_work += step_pressure_work;
     record_statistics(trial);
     const double change =
       std::abs(energy.total() - energy_before - step_pressure_work) / std::max(std::abs(energy_before), 1e-300);
-    step_control.accept(trial, max_increment, reference_cell_size(), change, error_estimate);
+    step_control.accept(trial, max_increment, reference_cell_size(), change, error_estimate, local_error_irreducible);
     previous_increment  = step_increment;
     previous_phi_change = step_phi_change;
     previous_tau        = trial;

@@ -99,6 +99,7 @@ namespace Membrane
                      {"step", step},
                      {"rejected_steps", rejected_steps},
                      {"grid_control_skipped", grid_control_skipped},
+                     {"irreducible_error_steps", irreducible_error_steps},
                      {"initial_area", initial_area},
                      {"initial_mass", initial_mass},
                      {"next_output_time", next_output_time},
@@ -159,7 +160,8 @@ namespace Membrane
       .add_raw("rejections", rejection_counts)
       .add("time", time)
       .add("wall_seconds", wall_seconds)
-      .add("grid_control_refused_fraction", step > 0 ? double(grid_control_skipped) / step : 0.0);
+      .add("grid_control_refused_fraction", step > 0 ? double(grid_control_skipped) / step : 0.0)
+      .add("irreducible_error_steps", irreducible_error_steps);
     for (const char *c : {"energy", "bending_energy", "gaussian_energy", "gradient_energy", "well_energy", "area",
                           "area_drift", "mass", "mass_drift", "bud_height", "neck_radius", "bud_radius", "neck_ratio",
                           "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error", "cells",

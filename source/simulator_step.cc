@@ -168,16 +168,23 @@ namespace Membrane
     const State lagrangian = save_state();
     {
       TimerOutput::Scope scope(timer, "grid control");
-      const Vector normal = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
-      const Vector shift  = grid_control_displacement(surface, normal,
-                                                      parameters.grid_control_weight_of_step(tau));
-      const Vector ratio = area_ratio();
-      remap_correction   = move_tangentially_and_remap(surface, shift, phi);
-      // The reference area moves with the vertices, each keeping its relative error;
-      // the total reference area is kept exactly.
-      carry_reference_areas(ratio);
-      if (volume_term(trial_end_time - time).fixed && !shape_solver.volume_held_by_areas())
-        restore_volume(); // the tangential move changes the volume of the bilinear surface
+      // With a grid-control rate, a long step is smoothed in several sweeps (each within
+      // the stable weight), so the mesh moves at the same rate per unit time whatever tau.
+      const unsigned int sweeps = parameters.grid_control_sweeps_of_step(tau);
+      const double       weight = parameters.grid_control_weight_of_step(tau);
+      remap_correction          = 0;
+      for (unsigned int sweep = 0; sweep < sweeps; ++sweep)
+        {
+          const Vector normal = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
+          const Vector shift  = grid_control_displacement(surface, normal, weight);
+          const Vector ratio  = area_ratio();
+          remap_correction += move_tangentially_and_remap(surface, shift, phi);
+          // The reference area moves with the vertices, each keeping its relative error;
+          // the total reference area is kept exactly.
+          carry_reference_areas(ratio);
+          if (volume_term(trial_end_time - time).fixed && !shape_solver.volume_held_by_areas())
+            restore_volume(); // the tangential move changes the volume of the bilinear surface
+        }
     }
     update_geometry();
     if (std::isfinite(energy.total()) &&
@@ -258,8 +265,11 @@ namespace Membrane
       return restore("energy_rise", "the energy would rise by " + format(rise));
     step_error     = previous_tau > 0 ? local_error(tau_trial) : -1;
     error_estimate = step_control.controls_accuracy() && step_error >= 0 ? step_error / step_control.accuracy() : -1;
-    if (error_estimate > 1)
+    // An estimate that does not fall with tau is accepted (TimeStepController::irreducible).
+    local_error_irreducible = step_control.irreducible(tau_trial, error_estimate);
+    if (error_estimate > 1 && !local_error_irreducible)
       {
+        step_control.note_error_rejection(tau_trial, error_estimate);
         rejection_factor = TimeStepController::shrink_factor(error_estimate);
         return restore("local_error", "the estimated local error is " + format(error_estimate) +
                        " x <Time stepping/Accuracy tolerance>");

@@ -35,10 +35,19 @@ namespace Membrane
     return limits.adaptive && current >= limits.minimum;
   }
 
+  bool TimeStepController::irreducible(const double trial, const double error) const
+  {
+    return controls_accuracy() && error > 1 && last_error_rejection.tau > trial &&
+           error > trial / last_error_rejection.tau * last_error_rejection.error;
+  }
+
   void TimeStepController::accept(const double trial, const double max_increment, const double cell_size,
-                                  const double energy_change, const double error)
+                                  const double energy_change, const double error, const bool irreducible)
   {
     record(false);
+    if (irreducible)
+      return; // tau held; the rejection it was measured against is kept
+    last_error_rejection = {};
     if (!limits.adaptive || trial != current)
       return;
     double next = current;

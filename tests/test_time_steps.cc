@@ -1,4 +1,6 @@
-// The adaptive step-size rules (include/membrane/time_step_control.h).
+// The adaptive step-size rules (include/membrane/time_step_control.h) and the grid-control
+// sweeps of a step (include/membrane/parameters.h).
+#include <membrane/parameters.h>
 #include <membrane/time_step_control.h>
 
 #include <gtest/gtest.h>
@@ -94,4 +96,56 @@ TEST(TimeSteps, ErrorEstimateSetsTheStep)
   EXPECT_FALSE(without.controls_accuracy());
   without.accept(1e-3, 0.0, 1.0 / 32, 1e-4, 100.0); // estimates are ignored without a tolerance
   EXPECT_DOUBLE_EQ(without.tau(), 1.25e-3);
+}
+
+// An estimate above tolerance that has not fallen in proportion to tau since the last
+// rejection for it is irreducible: the step is accepted and tau held, not shrunk further.
+// An estimate that falls like tau^2 (a true first-order local error) stays reducible.
+TEST(TimeSteps, EstimateThatDoesNotFallWithTauIsAcceptedAndTauHeld)
+{
+  TimeStepController control(TimeStepLimits{true, 1e-9, 1e-2, 1.25, 1e-2}, 1e-3);
+  EXPECT_FALSE(control.irreducible(1e-3, 2.0)); // no rejection to compare with yet
+  control.note_error_rejection(1e-3, 2.0);
+  ASSERT_TRUE(control.reject(1e-3, TimeStepController::shrink_factor(2.0)));
+  EXPECT_DOUBLE_EQ(control.tau(), 5e-4);
+  EXPECT_FALSE(control.irreducible(5e-4, 2.0 * 0.25)); // fell like tau^2: below tolerance anyway
+  EXPECT_FALSE(control.irreducible(5e-4, 0.99));       // fell more than tau: reducible
+  EXPECT_TRUE(control.irreducible(5e-4, 1.9));         // fell less than tau (2 x 0.5 = 1)
+  EXPECT_FALSE(control.irreducible(1e-3, 1.9));        // not a smaller step than the rejected one
+
+  control.accept(5e-4, 0.0, 1.0 / 32, 1e-4, 1.9, true);
+  EXPECT_DOUBLE_EQ(control.tau(), 5e-4);              // held, not grown or shrunk
+  EXPECT_TRUE(control.irreducible(5e-4, 1.9));         // the rejection it is measured against is kept
+  control.accept(5e-4, 0.0, 1.0 / 32, 1e-4, 0.5);     // within tolerance again: the memory is cleared
+  EXPECT_FALSE(control.irreducible(5e-4, 1.9));
+
+  TimeStepController without(TimeStepLimits{true, 1e-9, 1e-2, 1.25}, 1e-3);
+  without.note_error_rejection(1e-3, 2.0);
+  EXPECT_FALSE(without.irreducible(5e-4, 1.9)); // no tolerance, no estimate to judge
+}
+
+// With a grid-control rate r, a step of length tau is smoothed in ceil(r tau / w) sweeps of
+// weight r tau / sweeps <= w, so the total weight per unit time is r whatever tau; without
+// a rate, one sweep of the weight w per step (the paper's rule).
+TEST(TimeSteps, GridControlSweepsKeepTheRatePerUnitTime)
+{
+  Membrane::Parameters parameters;
+  parameters.grid_control_weight = 0.1;
+  parameters.grid_control_rate   = 10;
+  for (const double tau : {1e-4, 5e-3, 1e-2, 1.5e-2, 8e-2})
+    {
+      const unsigned int sweeps = parameters.grid_control_sweeps_of_step(tau);
+      const double       weight = parameters.grid_control_weight_of_step(tau);
+      EXPECT_NEAR(sweeps * weight, 10 * tau, 1e-14) << "tau = " << tau;
+      EXPECT_LE(weight, 0.1 + 1e-15) << "tau = " << tau;
+      if (sweeps > 1)
+        {
+          EXPECT_GT(weight, 0.05 - 1e-15) << "tau = " << tau; // no more sweeps than needed
+        }
+    }
+  EXPECT_EQ(parameters.grid_control_sweeps_of_step(1e-2), 1u);
+  EXPECT_EQ(parameters.grid_control_sweeps_of_step(8e-2), 8u);
+  parameters.grid_control_rate = 0;
+  EXPECT_EQ(parameters.grid_control_sweeps_of_step(8e-2), 1u);
+  EXPECT_DOUBLE_EQ(parameters.grid_control_weight_of_step(8e-2), 0.1);
 }

@@ -15,6 +15,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,10 +49,22 @@ namespace Membrane
     double       grid_control_weight = 0.1; ///< per step; with a rate, the largest per step
     double       grid_control_rate   = 0;   ///< per unit time (0: the weight per step, whatever tau)
 
-    /// The grid-control weight of a step of length tau (docs/model.md, grid control).
+    /// Grid-control sweeps of a step of length tau (docs/model.md, grid control): with a
+    /// rate r, a step whose weight r tau exceeds Grid control weight is split into sweeps of
+    /// at most that weight, so that the mesh is smoothed at the rate r whatever tau.
+    unsigned int grid_control_sweeps_of_step(const double tau) const
+    {
+      if (grid_control_rate <= 0 || grid_control_weight <= 0)
+        return 1;
+      return static_cast<unsigned int>(std::max(1.0, std::ceil(grid_control_rate * tau / grid_control_weight - 1e-12)));
+    }
+
+    /// The weight of each grid-control sweep of a step of length tau.
     double grid_control_weight_of_step(const double tau) const
     {
-      return grid_control_rate > 0 ? std::min(grid_control_weight, grid_control_rate * tau) : grid_control_weight;
+      return grid_control_rate > 0 ?
+               std::min(grid_control_weight, grid_control_rate * tau / grid_control_sweeps_of_step(tau)) :
+               grid_control_weight;
     }
     // Outcome
     OutcomeCriteria outcome;

@@ -225,6 +225,8 @@ namespace Membrane
     /// after a rejection.
     Vector step_increment, step_phi_change, previous_increment, previous_phi_change;
     double previous_tau = 0, error_estimate = -1, step_error = -1, rejection_factor = 0.5;
+    bool         local_error_irreducible = false; ///< this trial's estimate did not fall with tau
+    unsigned int irreducible_error_steps = 0;     ///< accepted steps with such an estimate
     /// Mesh adaptation: the level of the input mesh, the number of adaptations and the
     /// sum of their energy changes (not steps of the gradient flow).
     unsigned int base_level = 0, adaptations = 0;

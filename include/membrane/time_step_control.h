@@ -11,7 +11,13 @@
 // With an accuracy tolerance, the step's error estimate (relative to the tolerance:
 // 1 = at tolerance) also sets tau: tau <- tau min(growth, 0.9 / sqrt(estimate)),
 // never above what the rules above allow; a step above tolerance is rejected by the
-// simulator and retried with tau max(0.2, 0.9 / sqrt(estimate)).
+// simulator and retried with tau max(0.2, 0.9 / sqrt(estimate)). A first-order step's
+// local error falls like tau^2: an estimate above tolerance that has not fallen even in
+// proportion to tau since the last rejection for it does not measure a time-discretization
+// error but a part of the increment that does not scale with tau (a stiff mode relaxed in
+// full by every step, e.g. at a neck the mesh barely resolves). A smaller tau would not
+// lower it and only stall the run, so such a step is accepted at the tau it was tried with,
+// and tau is held there until the estimate falls below the tolerance again.
 // The controller is stalled when half of the last 20 attempted steps were rejected
 // and tau is below 1e-3 of its maximum: the solution is approaching a singularity
 // (a pinching neck) that steps of any size cannot pass, and the run should stop.
@@ -47,7 +53,16 @@ namespace Membrane
     /// After an accepted trial step; `max_increment` is the largest vertex move,
     /// `cell_size` the reference cell size, `energy_change` |Delta F| / |F|, and
     /// `error` the error estimate relative to the tolerance (negative: none).
-    void accept(double trial, double max_increment, double cell_size, double energy_change, double error = -1);
+    /// `irreducible`: the estimate was above tolerance but irreducible() (tau is held).
+    void accept(double trial, double max_increment, double cell_size, double energy_change, double error = -1,
+                bool irreducible = false);
+
+    /// The relative error estimate `error` of a trial step of length `trial` is above 1 and
+    /// has not fallen in proportion to tau since the last rejection for the local error.
+    bool irreducible(double trial, double error) const;
+
+    /// A trial step of length `trial` is rejected for its relative error estimate `error`.
+    void note_error_rejection(double trial, double error) { last_error_rejection = {trial, error}; }
 
     /// The factor by which tau shrinks after a step whose relative error estimate
     /// `error` exceeded 1.
@@ -65,5 +80,10 @@ namespace Membrane
     TimeStepLimits    limits;
     double            current;
     std::deque<bool>  recent; ///< the last attempts, true = rejected
+    /// The last rejection for the local error (tau 0: none since a step within tolerance).
+    struct
+    {
+      double tau = 0, error = 0;
+    } last_error_rejection;
   };
 } // namespace Membrane
