@@ -103,8 +103,9 @@ namespace Membrane
     Vector      phi_owned    = surface.scalar_space().make_owned();
     std::string statistics_text;
     reference_areas     = surface.scalar_space().make_owned();
+    StepIncrements increments{surface.vector_space().make_owned(), surface.scalar_space().make_owned()};
     const auto  scalars = load_checkpoint(parameters.resume_from, surface, displacement, phi_owned, reference_areas,
-                                          statistics_text);
+                                          statistics_text, &increments);
     surface.set_displacement(displacement);
     if (reference_areas.linfty_norm() == 0) // a checkpoint of format 1
       reference_areas = vertex_areas(surface);
@@ -124,6 +125,16 @@ namespace Membrane
     grid_control_skipped = static_cast<unsigned int>(scalars.at("grid_control_skipped"));
     if (scalars.count("irreducible_error_steps")) // absent in older checkpoints
       irreducible_error_steps = static_cast<unsigned int>(scalars.at("irreducible_error_steps"));
+    // The accuracy control continues as if uninterrupted: the last step's increments and the
+    // last rejection for the local error (older checkpoints: the first step has no estimate).
+    if (scalars.count("previous_tau") && scalars.at("previous_tau") > 0)
+      {
+        previous_tau        = scalars.at("previous_tau");
+        previous_increment  = increments.shape;
+        previous_phi_change = increments.phi;
+      }
+    if (scalars.count("error_rejection_tau"))
+      step_control.note_error_rejection(scalars.at("error_rejection_tau"), scalars.at("error_rejection_estimate"));
     for (const char *kind : rejection_kinds) // absent in checkpoints written before the count by kind
       if (scalars.count(std::string("rejected_") + kind))
         rejections[kind] = static_cast<unsigned int>(scalars.at(std::string("rejected_") + kind));

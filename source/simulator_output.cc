@@ -109,11 +109,17 @@ namespace Membrane
                      {"adaptation_energy_jump", adaptation_energy_jump},
                      {"initial_volume", initial_volume},
                      {"volume_pressure", volume_pressure},
-                     {"pressure_work", pressure_work}};
+                     {"pressure_work", pressure_work},
+                     {"previous_tau", previous_tau},
+                     {"error_rejection_tau", step_control.error_rejection().tau},
+                     {"error_rejection_estimate", step_control.error_rejection().error}};
     for (const auto &[kind, count] : rejections)
       scalars["rejected_" + kind] = count;
+    // The last step's increments, which the accuracy control's next error estimate compares
+    // with (none before the first step and after a mesh adaptation: previous_tau = 0).
+    const StepIncrements increments{previous_increment, previous_phi_change};
     save_checkpoint(parameters.output_directory + "/checkpoint.txt", surface, phi, reference_areas, scalars,
-                    stats.to_text(), options.parameter_text);
+                    stats.to_text(), options.parameter_text, previous_tau > 0 ? &increments : nullptr);
   }
 
   void Simulator::write_run_info() const

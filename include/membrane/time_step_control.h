@@ -61,8 +61,16 @@ namespace Membrane
     /// has not fallen in proportion to tau since the last rejection for the local error.
     bool irreducible(double trial, double error) const;
 
-    /// A trial step of length `trial` is rejected for its relative error estimate `error`.
+    /// A trial step of length `trial` is rejected for its relative error estimate `error`
+    /// (also: restores the memory from a checkpoint).
     void note_error_rejection(double trial, double error) { last_error_rejection = {trial, error}; }
+
+    /// The last rejection for the local error since a step within tolerance (tau 0: none).
+    struct ErrorRejection
+    {
+      double tau = 0, error = 0;
+    };
+    ErrorRejection error_rejection() const { return last_error_rejection; }
 
     /// The factor by which tau shrinks after a step whose relative error estimate
     /// `error` exceeded 1.
@@ -80,10 +88,6 @@ namespace Membrane
     TimeStepLimits    limits;
     double            current;
     std::deque<bool>  recent; ///< the last attempts, true = rejected
-    /// The last rejection for the local error (tau 0: none since a step within tolerance).
-    struct
-    {
-      double tau = 0, error = 0;
-    } last_error_rejection;
+    ErrorRejection    last_error_rejection;
   };
 } // namespace Membrane

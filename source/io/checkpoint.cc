@@ -17,12 +17,14 @@ namespace Membrane
 
   namespace
   {
-    constexpr const char *magic    = "membrane-checkpoint 3";
+    constexpr const char *magic    = "membrane-checkpoint 4";
+    constexpr const char *magic_v3 = "membrane-checkpoint 3";
     constexpr const char *magic_v2 = "membrane-checkpoint 2";
     constexpr const char *magic_v1 = "membrane-checkpoint 1";
-    /// x, y, z, D (3), phi, reference area. z tells apart the vertices of a closed
-    /// surface that share x and y (formats 1 and 2, of the patch, have no z).
-    constexpr std::size_t fields = 8;
+    /// x, y, z, D (3), phi, reference area, increment of X (3) and of phi. z tells
+    /// apart the vertices of a closed surface that share x and y (formats 1 and 2, of
+    /// the patch, have no z; formats 1-3 have no increments, format 1 no area).
+    constexpr std::size_t fields = 12;
     using Key = std::tuple<double, double, double>;
 
     /// Calls f(reference vertex, vector dofs[3], scalar dof) for every owned,
@@ -197,17 +199,22 @@ namespace Membrane
 
   void save_checkpoint(const std::string &path, const Surface &surface, const Vector &phi,
                        const Vector &reference_areas, const std::map<std::string, double> &scalars,
-                       const std::string &statistics_text, const std::string &parameter_text)
+                       const std::string &statistics_text, const std::string &parameter_text,
+                       const StepIncrements *increments)
   {
-    const Vector       &D     = surface.displacement();
-    const Vector        areas = surface.scalar_space().ghosted_copy(reference_areas);
+    const Vector &D     = surface.displacement();
+    const Vector  areas = surface.scalar_space().ghosted_copy(reference_areas);
+    const Vector  dX    = increments ? surface.vector_space().ghosted_copy(increments->shape) :
+                                       surface.vector_space().make_ghosted();
+    const Vector  dphi  = increments ? surface.scalar_space().ghosted_copy(increments->phi) :
+                                       surface.scalar_space().make_ghosted();
     std::vector<double> local;
     std::set<types::global_dof_index> seen;
     for_each_owned_vertex(surface, [&](const Point<spacedim> &x, const auto &vector_dofs, const auto dof) {
       if (!seen.insert(dof).second)
         return;
-      local.insert(local.end(),
-                   {x[0], x[1], x[2], D[vector_dofs[0]], D[vector_dofs[1]], D[vector_dofs[2]], phi[dof], areas[dof]});
+      local.insert(local.end(), {x[0], x[1], x[2], D[vector_dofs[0]], D[vector_dofs[1]], D[vector_dofs[2]], phi[dof],
+                                 areas[dof], dX[vector_dofs[0]], dX[vector_dofs[1]], dX[vector_dofs[2]], dphi[dof]});
     });
     const MPI_Comm comm  = surface.scalar_space().communicator();
     const auto     parts = Utilities::MPI::gather(comm, local, 0);
@@ -242,15 +249,17 @@ namespace Membrane
 
   std::map<std::string, double> load_checkpoint(const std::string &path, const Surface &surface,
                                                 Vector &displacement, Vector &phi, Vector &reference_areas,
-                                                std::string &statistics_text)
+                                                std::string &statistics_text, StepIncrements *increments)
   {
     std::ifstream in(path);
     AssertThrow(in, ExcMessage("Entry <Checkpoint/Resume from>: cannot open the checkpoint <" + path + ">"));
     std::string line;
-    AssertThrow(std::getline(in, line) && (line == magic || line == magic_v2 || line == magic_v1),
+    AssertThrow(std::getline(in, line) &&
+                  (line == magic || line == magic_v3 || line == magic_v2 || line == magic_v1),
                 ExcMessage("Entry <Checkpoint/Resume from>: <" + path + "> is not a membrane checkpoint"));
-    const bool                    has_areas = line != magic_v1;
-    const bool                    has_z     = line == magic;
+    const bool                    has_areas      = line != magic_v1;
+    const bool                    has_z          = line == magic || line == magic_v3;
+    const bool                    has_increments = line == magic;
     std::map<std::string, double> scalars;
     std::size_t                   n = 0;
     while (std::getline(in, line))
@@ -274,20 +283,22 @@ namespace Membrane
         words >> scalars[name];
       }
     const std::string name = "Entry <Checkpoint/Resume from>: <" + path + ">";
-    std::map<Key, std::array<double, 5>> values;
+    std::map<Key, std::array<double, 9>> values;
     for (std::size_t i = 0; i < n; ++i)
       {
         AssertThrow(std::getline(in, line), ExcMessage(name + " is truncated (vertex " + std::to_string(i) + " of " +
                                                        std::to_string(n) + ")"));
         std::istringstream    words(line);
         double                x, y, z = 0;
-        std::array<double, 5> v{};
+        std::array<double, 9> v{};
         words >> x >> y;
         if (has_z)
           words >> z;
         words >> v[0] >> v[1] >> v[2] >> v[3];
         if (has_areas)
           words >> v[4];
+        if (has_increments)
+          words >> v[5] >> v[6] >> v[7] >> v[8];
         bool finite = !words.fail() && std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
         for (const double value : v)
           finite = finite && std::isfinite(value);
@@ -338,6 +349,12 @@ namespace Membrane
         displacement[vector_dofs[c]] = it->second[c];
       phi[dof]             = it->second[3];
       reference_areas[dof] = it->second[4];
+      if (increments)
+        {
+          for (unsigned int c = 0; c < spacedim; ++c)
+            increments->shape[vector_dofs[c]] = it->second[5 + c];
+          increments->phi[dof] = it->second[8];
+        }
     });
     // Every vertex of this mesh in the file, and no other: a finer mesh's file holds
     // all vertices of a coarser one.
@@ -355,6 +372,13 @@ namespace Membrane
     displacement.compress(VectorOperation::insert);
     phi.compress(VectorOperation::insert);
     reference_areas.compress(VectorOperation::insert);
+    if (increments)
+      {
+        increments->shape.compress(VectorOperation::insert);
+        increments->phi.compress(VectorOperation::insert);
+        surface.vector_space().constraints().distribute(increments->shape);
+        surface.scalar_space().constraints().distribute(increments->phi);
+      }
     surface.vector_space().constraints().distribute(displacement);
     surface.scalar_space().constraints().distribute(phi);
     return scalars;
