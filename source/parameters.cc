@@ -111,7 +111,9 @@ namespace Membrane
                         "change of the velocities: 1/2 max |W - (tau/tau_prev) W_prev| in cell sizes for the shape "
                         "and 1/2 max |dphi - (tau/tau_prev) dphi_prev| for phi. A step whose estimate exceeds this "
                         "tolerance is rejected; otherwise tau <- tau min(Growth factor, 0.9 sqrt(tolerance / "
-                        "estimate)), within the other rules and bounds.");
+                        "estimate)), within the other rules and bounds. An estimate that has not fallen in "
+                        "proportion to tau since its last rejection (a stiff mode, not a time-discretization "
+                        "error) is accepted and tau held. Use with a Shape/Grid control rate.");
       prm.declare_entry("Energy tolerance", "1e-10", Patterns::Double(0, 1),
                         "Largest accepted relative rise of the free energy in one step (round-off allowance).");
       prm.declare_entry("Equilibrium rate", "0", Patterns::Double(0, max_double),
@@ -167,11 +169,12 @@ namespace Membrane
       prm.declare_entry("Grid control weight", "0.1", Patterns::Double(0, 0.5),
                         "w: after each step every vertex moves by w times the tangential part of (mean of its edge "
                         "neighbours - itself), and phi is remapped (the paper's alpha = delta = 0.1; 0: no grid "
-                        "control, a purely Lagrangian mesh). With a Grid control rate, the largest weight of a step.");
+                        "control, a purely Lagrangian mesh). With a Grid control rate, the largest weight of a sweep.");
       prm.declare_entry("Grid control rate", "0", Patterns::Double(0, max_double),
-                        "r, per unit time: the weight of a step of length tau is min(r tau, Grid control weight), so "
-                        "that the mesh is smoothed (and phi remapped) at a rate that does not depend on the number of "
-                        "steps, and the state at a fixed time converges as tau -> 0 (10: the paper's 0.1 per step at "
+                        "r, per unit time: a step of length tau moves the grid by the weight r tau, in "
+                        "ceil(r tau / Grid control weight) sweeps of equal weight, so that the mesh is smoothed (and "
+                        "phi remapped) at a rate that does not depend on the number or length of the steps, and the "
+                        "state at a fixed time converges as tau -> 0 (10: the paper's 0.1 per step at "
                         "tau = 1e-2; use it for time-step studies and with Accuracy tolerance). 0: the weight of every "
                         "step is Grid control weight, whatever tau (the paper's rule; the state then depends on the "
                         "number of steps, see docs/time-step-accuracy.md).");
