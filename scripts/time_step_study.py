@@ -93,7 +93,8 @@ for tolerance, cap, rate, start in cases:
                      t_min=budding_time_of_run(out),
                      half=float(np.interp(0.5 * args.end_time, time, energy)) if time[-1] >= 0.5 * args.end_time
                      else math.nan,
-                     end=float(energy[-1]) if finished else math.nan, t_end=float(time[-1])))
+                     end=float(energy[-1]) if finished else math.nan, t_end=float(time[-1]),
+                     time=time, protrusion=np.asarray(stats['domain_protrusion'])))
 if args.no_docs:
     sys.exit(0)
 
@@ -125,6 +126,14 @@ def successive(values):
     return diffs, orders
 
 
+def protrusion_difference(r):
+    """Domain protrusion minus the reference's at the reference T_min."""
+    if reference['t_min'] is None:
+        return math.nan
+    at = reference['t_min']
+    return float(np.interp(at, r['time'], r['protrusion']) - np.interp(at, reference['time'], reference['protrusion']))
+
+
 lines = ['# Time-step convergence and accuracy-based time steps', '',
          f'The 7.3 setup at `sigma = 1500` on the uniform 32 x 32 mesh, run to t = {args.end_time:g}, with grid '
          'control at a rate per unit time (`Shape/Grid control rate` = 10) unless marked otherwise: tau capped '
@@ -137,8 +146,9 @@ lines = ['# Time-step convergence and accuracy-based time steps', '',
          '`irreducible_error_steps`). Regenerate with `scripts/time_step_study.py` (about 15 minutes on one core).',
          '', f'| start | grid control | tolerance | maximum tau | steps | rejected | held | '
          f'energy at t = {0.5 * args.end_time:g} | energy at t = {args.end_time:g} | '
-         f'difference at t = {args.end_time:g} | T_min | difference in T_min | wall s |',
-         '|---|---|---|---|---|---|---|---|---|---|---|---|---|']
+         f'difference at t = {args.end_time:g} | T_min | difference in T_min | protrusion difference at the '
+         'reference T_min | wall s |',
+         '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|']
 for r in rows:
     s = r['summary']
     lines.append(f"| {r['start']} | {'rate 10' if r['rate'] else 'fixed 0.1 per step'} | "
@@ -147,7 +157,8 @@ for r in rows:
                  f"{'stopped at t = ' + format(r['t_end'], '.4f') if not r['finished'] else format(r['end'], '.5f')} | "
                  f"{fmt_rel(r['end'], reference['end'])} | "
                  f"{'undefined' if r['t_min'] is None else format(r['t_min'], '.4f')} | "
-                 f"{fmt_rel(r['t_min'], reference['t_min'])} | {s['wall_seconds']:.1f} |")
+                 f"{fmt_rel(r['t_min'], reference['t_min'])} | {protrusion_difference(r):+.1e} | "
+                 f"{s['wall_seconds']:.1f} |")
 
 text = []
 # The start: the default start reaches the cap while the mixture still sorts fast.
@@ -197,9 +208,25 @@ if len(t_min_errors) >= 2:
     text.append('As the tolerance shrinks, T_min of the controlled runs ' +
                 ('approaches the reference monotonically' if falling else 'does not approach the reference '
                  'monotonically') + ' (' + ', '.join(f'{e:.1e}' for e in t_min_errors) + '), more slowly than the '
-                'energy: the estimate measures the change of the increments from one step to the next, and the '
-                'slow late growth of the protrusion, whose increments are small and smooth, passes with long '
-                'steps.')
+                'energy at the end time.')
+finished = [r for r in controlled if r['finished']]
+slope_note = ''
+if reference['t_min'] is not None:
+    slope = float(np.interp(reference['t_min'], reference['time'],
+                            np.gradient(reference['protrusion'], reference['time'])))
+    if slope > 0:
+        slope_note = (f' At T_min the protrusion rises by {slope:.2f} per unit time, so an error e in it moves '
+                      f'T_min by about e / {slope:.2f}: relative to T_min, {1 / (slope * reference["t_min"]):.1f} e.')
+if len(finished) >= 3:
+    dp = [abs(protrusion_difference(r)) for r in finished]
+    orders = [math.log(dp[i] / dp[i + 1]) / math.log(finished[i]['tolerance'] / finished[i + 1]['tolerance'])
+              for i in range(len(dp) - 1) if dp[i] > 0 and dp[i + 1] > 0]
+    text.append('The protrusion at the reference T_min differs from the reference by ' +
+                ', '.join(f"{d:.1e}" for d in dp) + ' at the tolerances ' +
+                ', '.join(f"{r['tolerance']:g}" for r in finished) + ' (observed orders in the tolerance ' +
+                ', '.join(f'{o:.2f}' for o in orders) + '). The tolerance bounds the error of each step; a '
+                'first-order step then has tau proportional to the square root of the tolerance, and the error '
+                'accumulated over the steps falls like it too (order 1/2).' + slope_note)
 resolved_t = [r['t_min'] for r in capped['resolved']]
 if len(resolved_t) >= 3 and None not in resolved_t:
     diffs, orders = successive(resolved_t)
