@@ -243,16 +243,35 @@ if len(resolved_t) >= 3 and None not in resolved_t:
                     f'with the cap and lies within {max(abs(t - limit) for t in default_t) / limit:.0e} of that '
                     'limit although their energy is further off: closeness in T_min alone does not rank the runs.')
 held = [r for r in controlled if r['summary'].get('irreducible_error_steps', 0)]
+
+
+def held_rows(r):
+    """Times and estimates of the accepted steps whose estimate was above the tolerance."""
+    stats = load_statistics(os.path.join(args.output, name_of(r['tolerance'], r['cap'], r['rate'], r['start'])))
+    return [(t, e) for t, e in zip(stats['time'], stats['error_estimate']) if e > 1]
+
+
+def held_early(r):
+    return sum(1 for t, _ in held_rows(r) if t < 0.01)
+
+
+def max_held_estimate(r):
+    return max((e for _, e in held_rows(r)), default=0)
+
+
 if held:
     text.append('**Held steps.** A first-order step\'s local error falls like tau^2. At the small tolerances the '
                 'estimate of some steps stays above the tolerance however small tau is made: it does not measure a '
-                'time-discretization error but a stiff part of the increment that every step relaxes in full (at '
-                'the forming neck, where the mesh barely resolves the curvature). Halving tau there would only '
+                'time-discretization error but a stiff part of the increment that every step relaxes in full. '
+                'Halving tau there would only '
                 'stall the run, so a step whose estimate has not fallen even in proportion to tau since its last '
                 'rejection is accepted and tau held until the estimate is below the tolerance again '
                 '(`source/time_step_control.cc`); ' +
-                ', '.join(f"{r['summary']['irreducible_error_steps']} steps at tolerance {r['tolerance']:g}"
-                          for r in held) + '.')
+                ', '.join(f"{r['summary']['irreducible_error_steps']} steps at tolerance {r['tolerance']:g} "
+                          f"({held_early(r)} before t = 0.01)" for r in held) + '. The early ones come while the finest '
+                'modes of the random initial mixture relax (estimates up to ' +
+                f"{max(max_held_estimate(r) for r in held):.0f} x the tolerance); the later ones come "
+                'as the bud grows, one or two at a time.')
 text.append('**Grid control at a rate with long steps.** A step with r tau above `Shape/Grid control weight` is '
             'smoothed in ceil(r tau / w) sweeps of equal weight, so the mesh moves at the rate r per unit time '
             'whatever tau; with a single sweep capped at w the long steps of accuracy control smoothed the mesh '

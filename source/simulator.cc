@@ -402,6 +402,11 @@ namespace Membrane
           << " rejected) at t = " << time << "; outcome: " << result.outcome << "; energy " << stats.last("energy")
           << ", mass drift " << stats.last("mass_drift") << ", area drift " << stats.last("area_drift")
           << "\nResults: " << parameters.output_directory << "/surface.pvd, statistics.txt, summary.json, parameters.prm\n";
+    if (irreducible_error_steps > 0)
+      pcout << "Note: " << irreducible_error_steps << " steps were accepted with an error estimate above <Time "
+            << "stepping/Accuracy tolerance> that did not fall with tau (a stiff part of the step: the finest modes of a "
+            << "random initial mixture, or a bud the mesh barely resolves; see docs/model.md, time steps); tau was "
+            << "held there.\n";
     if (!options.quiet)
       timer.print_wall_time_statistics(communicator);
     return result;
