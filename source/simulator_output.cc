@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 namespace Membrane
@@ -117,9 +118,11 @@ namespace Membrane
       scalars["rejected_" + kind] = count;
     // The last step's increments, which the accuracy control's next error estimate compares
     // with (none before the first step and after a mesh adaptation: previous_tau = 0).
-    const StepIncrements increments{previous_increment, previous_phi_change};
+    std::optional<StepIncrements> increments;
+    if (previous_tau > 0)
+      increments = StepIncrements{previous_increment, previous_phi_change};
     save_checkpoint(parameters.output_directory + "/checkpoint.txt", surface, phi, reference_areas, scalars,
-                    stats.to_text(), options.parameter_text, previous_tau > 0 ? &increments : nullptr);
+                    stats.to_text(), options.parameter_text, increments ? &*increments : nullptr);
   }
 
   void Simulator::write_run_info() const

@@ -16,9 +16,9 @@
 // proportion to tau since the last rejection for it does not measure a time-discretization
 // error but a part of the increment that does not scale with tau (a stiff mode relaxed in
 // full by every step: the finest modes of a random initial mixture, or a bud the mesh
-// barely resolves). A smaller tau would not
-// lower it and only stall the run, so such a step is accepted at the tau it was tried with,
-// and tau is held there until the estimate falls below the tolerance again.
+// barely resolves). A smaller tau would not lower it and only stall the run, so such a
+// step is accepted at the tau it was tried with, and tau is held there until the
+// estimate falls below the tolerance again.
 // The controller is stalled when half of the last 20 attempted steps were rejected
 // and tau is below 1e-3 of its maximum: the solution is approaching a singularity
 // (a pinching neck) that steps of any size cannot pass, and the run should stop.
