@@ -172,7 +172,11 @@ namespace Membrane
       // the stable weight), so the mesh moves at the same rate per unit time whatever tau.
       const unsigned int sweeps = parameters.grid_control_sweeps_of_step(tau);
       const double       weight = parameters.grid_control_weight_of_step(tau);
-      remap_correction          = 0;
+      // The tangential moves change the volume of the bilinear surface; a fixed volume is
+      // restored after each sweep (unless the vertex areas hold it).
+      const bool restore_moved_volume =
+        volume_term(trial_end_time - time).fixed && !shape_solver.volume_held_by_areas();
+      remap_correction = 0;
       for (unsigned int sweep = 0; sweep < sweeps; ++sweep)
         {
           const Vector normal = surface.vector_space().ghosted_copy(compute_vertex_normals(surface));
@@ -182,8 +186,8 @@ namespace Membrane
           // The reference area moves with the vertices, each keeping its relative error;
           // the total reference area is kept exactly.
           carry_reference_areas(ratio);
-          if (volume_term(trial_end_time - time).fixed && !shape_solver.volume_held_by_areas())
-            restore_volume(); // the tangential move changes the volume of the bilinear surface
+          if (restore_moved_volume)
+            restore_volume();
         }
     }
     update_geometry();
