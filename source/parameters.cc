@@ -228,8 +228,10 @@ namespace Membrane
                         "exact one to round-off and a factorization costs less from about 128 x 128 cells on "
                         "(benchmarks/README.md).");
       prm.declare_entry("Out of core", "false", Patterns::Bool(),
-                        "For Type = direct: MUMPS keeps the LU factors on disk, in $MUMPS_OOC_TMPDIR (default "
-                        "/tmp), instead of in memory (ICNTL(22) = 1): for meshes whose factors do not fit.");
+                        "For Type = direct: MUMPS keeps the LU factors on disk, in a directory of each process "
+                        "under $MUMPS_OOC_TMPDIR (default /tmp), instead of in memory (ICNTL(22) = 1): for meshes "
+                        "whose factors do not fit. Files a killed run leaves there are removed by the next "
+                        "out-of-core run on the host.");
       prm.leave_subsection();
 
       prm.enter_subsection("Output");

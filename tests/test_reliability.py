@@ -288,6 +288,39 @@ def signals_sigint_ends_the_run():
     stop_with(signal.SIGINT)
 
 
+@check
+def signals_sigkill_out_of_core_files_removed_by_the_next_run():
+    # MUMPS deletes its out-of-core factor files when its instance is destroyed, which a
+    # killed process never does; each process keeps them in its own directory, and the next
+    # out-of-core run on the host removes the directories of processes that are gone.
+    base = fresh('ooc-base')
+    os.makedirs(base)
+    env = dict(ENV, MUMPS_OOC_TMPDIR=base)
+    ooc = ['--set', 'Linear solver/Out of core=true', '--set', 'Output/Write VTU=false']
+    d = fresh('ooc-killed')
+    process = subprocess.Popen([EXE, '--quiet', '--set', 'Time stepping/End time=1000'] + ooc + out(d) + [SMALL],
+                               cwd=WORK, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                               stdin=subprocess.DEVNULL, env=env)
+    own = os.path.join(base, f'membrane-ooc-{os.uname().nodename}-{process.pid}')
+    try:
+        deadline = time.time() + 30
+        while not (os.path.exists(os.path.join(d, 'statistics.txt')) and os.path.isdir(own) and os.listdir(own)):
+            require(process.poll() is None, f'the out-of-core run ended early (exit code {process.returncode})')
+            require(time.time() < deadline, f'no factor files in {own} within 30 s: {os.listdir(base)}')
+            time.sleep(0.1)
+    finally:
+        process.kill()
+        process.wait()
+    require(os.listdir(own), 'the killed run left no factor files (nothing to test)')
+    result = subprocess.run([EXE] + TINY + ooc + out(fresh('ooc-next')) + [SMALL], cwd=WORK, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, env=env, timeout=120)
+    got, output = result.returncode, result.stdout.decode('utf-8', 'replace')
+    require(got == 0, f'the next out-of-core run ended with exit code {got}', output)
+    require(re.search(r'Removed 1 out-of-core directory of killed runs from ' + re.escape(base), output),
+            'the next run did not report removing the killed run\'s directory', output)
+    require(os.listdir(base) == [], f'left in {base} after the next run: {os.listdir(base)}')
+
+
 # ---- records and checkpoints of the simulator ---------------------------------------------
 
 @check

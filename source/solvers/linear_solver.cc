@@ -1,3 +1,4 @@
+#include <membrane/io/out_of_core_directory.h>
 #include <membrane/solvers/linear_solver.h>
 #include <membrane/solvers/petsc_check.h>
 
@@ -92,7 +93,12 @@ namespace Membrane
         check_petsc(MatMumpsSetIcntl(factor, 10, -2), "MatMumpsSetIcntl(10)");
       }
     if (options.out_of_core)
-      check_petsc(MatMumpsSetIcntl(factor, 22, 1), "MatMumpsSetIcntl(22)");
+      {
+        // MUMPS reads $MUMPS_OOC_TMPDIR at the factorization: this process's own directory,
+        // so that files a killed run leaves behind can be told apart and removed later.
+        out_of_core_directory();
+        check_petsc(MatMumpsSetIcntl(factor, 22, 1), "MatMumpsSetIcntl(22)");
+      }
   }
 
   void LinearSolver::factorize(const Mat matrix)
