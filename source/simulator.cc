@@ -135,6 +135,12 @@ namespace Membrane
       }
     if (scalars.count("error_rejection_tau"))
       step_control.note_error_rejection(scalars.at("error_rejection_tau"), scalars.at("error_rejection_estimate"));
+    // The stall detector judges the last 20 attempts, also across a resume (older checkpoints:
+    // it starts afresh).
+    if (scalars.count("recent_attempts"))
+      step_control.restore_attempt_history(
+        {static_cast<unsigned int>(std::clamp(scalars.at("recent_attempts"), 0.0, 20.0)),
+         static_cast<unsigned int>(std::clamp(scalars.at("recent_rejections"), 0.0, double((1U << 20) - 1)))});
     for (const char *kind : rejection_kinds) // absent in checkpoints written before the count by kind
       if (scalars.count(std::string("rejected_") + kind))
         rejections[kind] = static_cast<unsigned int>(scalars.at(std::string("rejected_") + kind));

@@ -113,7 +113,9 @@ namespace Membrane
                      {"pressure_work", pressure_work},
                      {"previous_tau", previous_tau},
                      {"error_rejection_tau", step_control.error_rejection().tau},
-                     {"error_rejection_estimate", step_control.error_rejection().error}};
+                     {"error_rejection_estimate", step_control.error_rejection().error},
+                     {"recent_attempts", step_control.attempt_history().count},
+                     {"recent_rejections", step_control.attempt_history().rejected}};
     for (const auto &[kind, count] : rejections)
       scalars["rejected_" + kind] = count;
     // The last step's increments, which the accuracy control's next error estimate compares

@@ -75,7 +75,7 @@ namespace Membrane
     // keeps it from being corrected by the next step, whatever its tau.
     area_projections      = 0;
     tangential_area_moves = 0;
-    const bool fixed_volume = volume_term(tau_trial).fixed && !shape_solver.volume_held_by_areas();
+    const bool fixed_volume = volume_fixed() && !shape_solver.volume_held_by_areas();
     if (options.correct_area || fixed_volume)
       {
         TimerOutput::Scope scope(timer, "area projection");
@@ -174,8 +174,7 @@ namespace Membrane
       const double       weight = parameters.grid_control_weight_of_step(tau);
       // The tangential moves change the volume of the bilinear surface; a fixed volume is
       // restored after each sweep (unless the vertex areas hold it).
-      const bool restore_moved_volume =
-        volume_term(trial_end_time - time).fixed && !shape_solver.volume_held_by_areas();
+      const bool restore_moved_volume = volume_fixed() && !shape_solver.volume_held_by_areas();
       remap_correction = 0;
       for (unsigned int sweep = 0; sweep < sweeps; ++sweep)
         {
@@ -235,7 +234,7 @@ namespace Membrane
         step_pressure_work = 0;
         if (parameters.evolve_shape)
           {
-            const double volume_before = volume_term(tau_trial).active ? enclosed_volume(surface) : 0;
+            const double volume_before = volume_constrained() ? enclosed_volume(surface) : 0;
             if (!move_shape(tau_trial, phi_new))
               return restore("non_finite", "the shape solve gave non-finite values");
             step_pressure_work = pressure_work_of_step(volume_before, pressure_before);

@@ -36,14 +36,24 @@ namespace Membrane
     return input_cell_size / (1u << finest_level());
   }
 
+  bool Simulator::volume_constrained() const
+  {
+    return closed() && parameters.volume.constraint != "free";
+  }
+
+  bool Simulator::volume_fixed() const
+  {
+    return closed() && parameters.volume.constraint == "fixed";
+  }
+
   VolumeCoupling Simulator::volume_term(const double tau) const
   {
     VolumeCoupling term;
     const VolumeOptions &options = parameters.volume;
-    if (!closed() || options.constraint == "free")
+    if (!volume_constrained())
       return term;
     term.active = true;
-    term.fixed  = options.constraint == "fixed";
+    term.fixed  = volume_fixed();
     if (term.fixed)
       // Linearized constraint with drift correction: integral W.n ds = V_target(t_{m+1}) - V(X).
       term.volume_defect = target_volume(options, initial_volume, initial_area, time + tau) - enclosed_volume(surface);

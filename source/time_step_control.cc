@@ -23,6 +23,21 @@ namespace Membrane
            current < 1e-3 * limits.maximum;
   }
 
+  TimeStepController::AttemptHistory TimeStepController::attempt_history() const
+  {
+    AttemptHistory history;
+    for (const bool rejected : recent)
+      history.rejected |= static_cast<unsigned int>(rejected) << history.count++;
+    return history;
+  }
+
+  void TimeStepController::restore_attempt_history(const AttemptHistory &history)
+  {
+    recent.clear();
+    for (unsigned int i = 0; i < std::min<unsigned int>(history.count, window); ++i)
+      recent.push_back((history.rejected >> i) & 1U);
+  }
+
   double TimeStepController::shrink_factor(const double error)
   {
     return std::clamp(0.9 / std::sqrt(error), 0.2, 0.5);

@@ -71,6 +71,37 @@ TEST(TimeSteps, StalledWhenHalfOfRecentStepsFailAtTinyTau)
   EXPECT_FALSE(large.stalled());
 }
 
+// The attempts the stall detector judges survive a checkpoint: a controller restored from
+// the history of a stalling one is stalled too, and one more accepted step is judged on the
+// same 20 attempts as without the interruption.
+TEST(TimeSteps, StallHistoryRoundTrips)
+{
+  TimeStepController control(TimeStepLimits{true, 1e-12, 1e-2, 1.25}, 1e-6);
+  for (int i = 0; i < 25; ++i) // alternate: half of the attempts rejected, tau stays tiny
+    {
+      if (i % 2 == 0)
+        control.accept(1e-6, 0.0, 1.0 / 32, 1e-4);
+      else
+        ASSERT_TRUE(control.reject(2e-6));
+      control.set_tau(1e-6);
+    }
+  ASSERT_TRUE(control.stalled());
+  const auto history = control.attempt_history();
+  EXPECT_EQ(history.count, 20U);
+  EXPECT_EQ(history.rejected, 0xAAAAAU >> 1); // attempts 5..24: odd ones rejected, oldest (5) first
+
+  TimeStepController resumed(TimeStepLimits{true, 1e-12, 1e-2, 1.25}, 1e-6);
+  EXPECT_FALSE(resumed.stalled()); // a fresh controller has no history
+  resumed.restore_attempt_history(history);
+  EXPECT_TRUE(resumed.stalled());
+  control.accept(1e-6, 0.0, 1.0 / 32, 1e-4);
+  resumed.accept(1e-6, 0.0, 1.0 / 32, 1e-4);
+  control.set_tau(1e-6);
+  resumed.set_tau(1e-6);
+  EXPECT_EQ(control.stalled(), resumed.stalled());
+  EXPECT_EQ(control.attempt_history().rejected, resumed.attempt_history().rejected);
+}
+
 // Accuracy control: the error estimate (relative to the tolerance) caps the growth by
 // 0.9 / sqrt(estimate), and a rejected step retries with that factor, between 0.2 and 0.5.
 TEST(TimeSteps, ErrorEstimateSetsTheStep)

@@ -163,6 +163,10 @@ namespace Membrane
     bool           closed() const { return parameters.reference.closed(); }
     void           make_reference_surface();
     VolumeCoupling volume_term(double tau) const;
+    /// A closed surface whose volume is fixed or under a prescribed pressure (volume_term()
+    /// is active) / fixed; unlike volume_term() these do not measure the volume.
+    bool           volume_constrained() const;
+    bool           volume_fixed() const;
     void           record_vesicle_statistics();
     /// The domain observables of a vesicle (analysis/vesicle_domain.h) as a BudShape.
     BudShape       measure_vesicle_bud() const;

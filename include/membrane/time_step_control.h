@@ -83,6 +83,15 @@ namespace Membrane
     /// Half of the last 20 attempts rejected at tau < 1e-3 maximum.
     bool stalled() const;
 
+    /// The attempts stalled() judges, oldest first, for checkpoints: bit i of `rejected`
+    /// is set if attempt i was rejected.
+    struct AttemptHistory
+    {
+      unsigned int count = 0, rejected = 0;
+    };
+    AttemptHistory attempt_history() const;
+    void           restore_attempt_history(const AttemptHistory &history);
+
   private:
     void record(bool rejected);
 
