@@ -15,7 +15,9 @@ fails is listed with its reason; the others go on.
 
 Solvers (--solvers): direct (MUMPS LU), gmres (block-Jacobi ILU), lumped (direct with the lumped
 curvature mass), lowrank (lumped with Linear solver/Low-rank tolerance = 1e-8), lowrank-ooc (that with
-Out of core = true; the factors go to the case's directory).
+Out of core = true; the factors go to the case's directory), lumped-reuse and lowrank-reuse (those with
+Linear solver/Reuse iterations = 20: the LU factors of an earlier step precondition GMRES, a new
+factorization only when GMRES would need more than 20 iterations).
 
 Usage: scaling.py <membrane-flow> [--sizes 32,64,128,256] [--ranks 1,2] [--solvers direct,gmres,lumped]
                   [--steps 8] [--output results/benchmarks/scaling]
@@ -60,6 +62,9 @@ SOLVERS = {
     'lumped': {'Type': 'direct', 'Curvature mass': 'lumped'},
     'lowrank': {'Type': 'direct', 'Curvature mass': 'lumped', 'Low-rank tolerance': '1e-8'},
     'lowrank-ooc': {'Type': 'direct', 'Curvature mass': 'lumped', 'Low-rank tolerance': '1e-8', 'Out of core': 'true'},
+    'lumped-reuse': {'Type': 'direct', 'Curvature mass': 'lumped', 'Reuse iterations': '20'},
+    'lowrank-reuse': {'Type': 'direct', 'Curvature mass': 'lumped', 'Low-rank tolerance': '1e-8',
+                      'Reuse iterations': '20'},
 }
 
 
@@ -70,7 +75,7 @@ def run_case(exe, n, ranks, solver, steps, directory):
     lumped = variant['Curvature mass'] == 'lumped'
     args = [exe, '--overwrite', '--set', f'Mesh/Cells per side={n}', '--set', 'Mesh/Maximum refinement level=0',
             '--set', f"Shape/Curvature mass={variant['Curvature mass']}"]
-    for entry in ('Type', 'Low-rank tolerance', 'Out of core'):
+    for entry in ('Type', 'Low-rank tolerance', 'Out of core', 'Reuse iterations'):
         if entry in variant:
             args += ['--set', f'Linear solver/{entry}={variant[entry]}']
     args += ['--set', f'Time stepping/Maximum steps={steps}',
@@ -100,6 +105,7 @@ def run_case(exe, n, ranks, solver, steps, directory):
         'phases_ms_per_step': {p: 1000 * sum(sections.get(k, 0) for k in keys) / accepted for p, keys in PHASES.items()},
         'peak_memory_bytes': sum(int(open(f).read().split()[-1]) * 1024 for f in glob.glob(rss + '.*')),
     })
+    case['factorizations_per_step'] = summary.get('shape_factorizations', math.nan) / accepted
     case['us_per_unknown_step'] = 1e6 * stepping / accepted / case['unknowns']
     case['bytes_per_unknown'] = case['peak_memory_bytes'] / case['unknowns']
     with open(os.path.join(directory, 'run', 'statistics.txt')) as f:
@@ -114,13 +120,13 @@ def run_case(exe, n, ranks, solver, steps, directory):
 def markdown(cases):
     lines = ['| solver | cells per side | ranks | unknowns | ms / step | us / (unknown step) | peak memory | '
              'bytes / unknown | assembly | solves | grid control | geometry | statistics | iterations / step | '
-             'time exponent |', '|' + '---|' * 15]
+             'shape factorizations / step | time exponent |', '|' + '---|' * 16]
     previous = {}
     for c in cases:
         key = (c['solver'], c['ranks'])
         if 'failed' in c:
             lines.append(f"| {c['solver']} | {c['cells_per_side']} | {c['ranks']} | {c['unknowns']} | "
-                         f"{c['failed']} |" + ' |' * 10)
+                         f"{c['failed']} |" + ' |' * 11)
             continue
         exponent = ''
         if key in previous:
@@ -132,7 +138,8 @@ def markdown(cases):
                      f"{c['ms_per_step']:.0f} | {c['us_per_unknown_step']:.2f} | "
                      f"{c['peak_memory_bytes'] / 1e9:.2f} GB | {c['bytes_per_unknown']:.0f} | "
                      + ' | '.join(f'{ph[p]:.0f}' for p in PHASES) +
-                     f" | {c.get('iterations_per_step', float('nan')):.0f} | {exponent} |")
+                     f" | {c.get('iterations_per_step', float('nan')):.0f}"
+                     f" | {c.get('factorizations_per_step', float('nan')):.2f} | {exponent} |")
     return '\n'.join(lines).replace('| nan |', '| - |')
 
 

@@ -52,6 +52,8 @@ namespace Membrane
     space.setup(periodic);
     space.reinit_matrix(matrix);
     rhs = space.make_owned();
+    if (solver)
+      earlier_factorizations += solver->n_factorizations();
     solver.reset(); // the mesh (and so the pattern) changed
   }
 

@@ -145,8 +145,12 @@ namespace Membrane
     /// See shape_solver_volume.cc.
     static constexpr double volume_compliance_floor = 5e-3;
 
-    /// Numeric factorizations so far (one per step, none for corrections).
-    unsigned int n_factorizations() const { return solver ? solver->n_factorizations() : 0; }
+    /// Numeric factorizations so far, over all meshes (one per step and none for corrections,
+    /// fewer with Linear solver/Reuse iterations).
+    unsigned int n_factorizations() const
+    {
+      return earlier_factorizations + (solver ? solver->n_factorizations() : 0);
+    }
 
   private:
     void assemble(const Surface &surface, const Geometry &geometry, const Material &material,
@@ -173,5 +177,6 @@ namespace Membrane
     VolumeCoupling                volume;   ///< of the current solve
     Vector pressure_column, volume_row, pressure_response; ///< c, b and z = A^-1 c of the last step
     double compliance = 1; ///< volume_compliance()
+    unsigned int earlier_factorizations = 0; ///< by the solvers of earlier meshes
   };
 } // namespace Membrane
