@@ -110,7 +110,11 @@ namespace Membrane
       if (timer)
         scope.emplace(*timer, "Cahn-Hilliard solve");
       if (!solver)
-        solver = std::make_unique<LinearSolver>(solver_options);
+        {
+          LinearSolverOptions prefixed = solver_options;
+          prefixed.options_prefix      = "cahn_hilliard_";
+          solver = std::make_unique<LinearSolver>(prefixed);
+        }
       iterations = solver->solve(matrix, solution, rhs);
     }
     space.constraints().distribute(solution);

@@ -324,7 +324,11 @@ namespace Membrane
         assemble_volume_coupling(surface, geometry, tau * material.shape_mobility);
     }
     if (!solver)
-      solver = std::make_unique<LinearSolver>(solver_options);
+      {
+          LinearSolverOptions prefixed = solver_options;
+          prefixed.options_prefix      = "shape_";
+          solver = std::make_unique<LinearSolver>(prefixed);
+        }
     return solve(surface, timer);
   }
 

@@ -63,7 +63,10 @@ namespace Membrane
                                static_cast<PetscInt>(options.max_iterations)),
               "KSPSetTolerances");
       }
-    // Expert tuning through PETSc's options database (e.g. PETSC_OPTIONS="-mat_mumps_icntl_7 5").
+    // Expert tuning through PETSc's options database (e.g. PETSC_OPTIONS="-mat_mumps_icntl_7 5"),
+    // for one system with its prefix ("-shape_mat_mumps_icntl_7 5").
+    if (!options.options_prefix.empty())
+      check_petsc(KSPSetOptionsPrefix(ksp, options.options_prefix.c_str()), "KSPSetOptionsPrefix");
     check_petsc(KSPSetFromOptions(ksp), "KSPSetFromOptions");
   }
 

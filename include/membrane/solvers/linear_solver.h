@@ -37,6 +37,9 @@ namespace Membrane
     /// direct: MUMPS writes the LU factors to disk (ICNTL(22) = 1) in $MUMPS_OOC_TMPDIR
     /// (default /tmp) instead of holding them in memory.
     bool out_of_core = false;
+    /// PETSc options prefix of this system's KSP ("shape_", "cahn_hilliard_"): expert settings
+    /// for one system only, e.g. PETSC_OPTIONS="-shape_ksp_monitor".
+    std::string options_prefix;
   };
 
   class LinearSolver
