@@ -110,11 +110,7 @@ namespace Membrane
       if (timer)
         scope.emplace(*timer, "Cahn-Hilliard solve");
       if (!solver)
-        {
-          LinearSolverOptions prefixed = solver_options;
-          prefixed.options_prefix      = "cahn_hilliard_";
-          solver = std::make_unique<LinearSolver>(prefixed);
-        }
+        solver = std::make_unique<LinearSolver>(solver_options, "cahn_hilliard_");
       iterations = solver->solve(matrix, solution, rhs);
     }
     space.constraints().distribute(solution);

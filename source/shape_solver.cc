@@ -324,11 +324,7 @@ namespace Membrane
         assemble_volume_coupling(surface, geometry, tau * material.shape_mobility);
     }
     if (!solver)
-      {
-          LinearSolverOptions prefixed = solver_options;
-          prefixed.options_prefix      = "shape_";
-          solver = std::make_unique<LinearSolver>(prefixed);
-        }
+      solver = std::make_unique<LinearSolver>(solver_options, "shape_");
     return solve(surface, timer);
   }
 

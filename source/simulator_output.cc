@@ -95,6 +95,7 @@ namespace Membrane
   void Simulator::write_checkpoint() const
   {
     TimerOutput::Scope scope(timer, "checkpoint");
+    const auto attempts = step_control.attempt_history(); // for the stall detector
     std::map<std::string, double> scalars = {{"time", time},
                      {"tau", step_control.tau()},
                      {"step", step},
@@ -114,8 +115,8 @@ namespace Membrane
                      {"previous_tau", previous_tau},
                      {"error_rejection_tau", step_control.error_rejection().tau},
                      {"error_rejection_estimate", step_control.error_rejection().error},
-                     {"recent_attempts", step_control.attempt_history().count},
-                     {"recent_rejections", step_control.attempt_history().rejected}};
+                     {"recent_attempts", attempts.count},
+                     {"recent_rejections", attempts.rejected}};
     for (const auto &[kind, count] : rejections)
       scalars["rejected_" + kind] = count;
     // The last step's increments, which the accuracy control's next error estimate compares

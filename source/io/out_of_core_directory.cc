@@ -23,11 +23,39 @@ namespace Membrane
       if (gethostname(name, sizeof(name) - 1) != 0)
         return "localhost";
       std::string host(name);
-      // '-' separates host and pid in the directory name; keep the pid the last field.
+      // The host becomes part of a file name: no path separators. (A '-' in it is harmless:
+      // directories are matched by the whole prefix "membrane-ooc-<host>-".)
       for (char &c : host)
         if (c == '/')
           c = '_';
       return host;
+    }
+
+    // Removes the directories `membrane-ooc-<host>-<pid>` in `base` whose process no longer
+    // runs on this host; returns how many were removed.
+    unsigned int remove_stale_out_of_core_directories(const std::string &base, const std::string &host)
+    {
+      const std::string own = prefix + host + "-";
+      unsigned int      removed = 0;
+      std::error_code   error;
+      for (const auto &entry : fs::directory_iterator(base, error))
+        {
+          const std::string name = entry.path().filename().string();
+          if (name.rfind(own, 0) != 0 || !entry.is_directory())
+            continue;
+          const std::string pid_text = name.substr(own.size());
+          if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos)
+            continue;
+          const long pid = std::strtol(pid_text.c_str(), nullptr, 10);
+          // kill(pid, 0) probes without signalling: ESRCH means no such process. A live
+          // process (also one that merely reuses the number) keeps its directory.
+          if (pid <= 0 || pid == getpid() || kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
+            continue;
+          std::error_code ignored; // another rank may be removing it at the same time
+          if (fs::remove_all(entry.path(), ignored) > 0)
+            ++removed;
+        }
+      return removed;
     }
 
     // The directory exists while the process lives; the destructor removes it after every
@@ -59,31 +87,6 @@ namespace Membrane
       std::string path;
     };
   } // namespace
-
-  unsigned int remove_stale_out_of_core_directories(const std::string &base, const std::string &host)
-  {
-    const std::string own = prefix + host + "-";
-    unsigned int      removed = 0;
-    std::error_code   error;
-    for (const auto &entry : fs::directory_iterator(base, error))
-      {
-        const std::string name = entry.path().filename().string();
-        if (name.rfind(own, 0) != 0 || !entry.is_directory())
-          continue;
-        const std::string pid_text = name.substr(own.size());
-        if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos)
-          continue;
-        const long pid = std::strtol(pid_text.c_str(), nullptr, 10);
-        // kill(pid, 0) probes without signalling: ESRCH means no such process. A live
-        // process (also one that merely reuses the number) keeps its directory.
-        if (pid <= 0 || pid == getpid() || kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
-          continue;
-        std::error_code ignored; // another rank may be removing it at the same time
-        if (fs::remove_all(entry.path(), ignored) > 0)
-          ++removed;
-      }
-    return removed;
-  }
 
   const std::string &out_of_core_directory()
   {

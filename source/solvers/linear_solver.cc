@@ -12,8 +12,9 @@ namespace Membrane
 {
   using namespace dealii;
 
-  LinearSolver::LinearSolver(LinearSolverOptions options)
+  LinearSolver::LinearSolver(LinearSolverOptions options, std::string options_prefix)
     : options(std::move(options))
+    , options_prefix(std::move(options_prefix))
   {}
 
   LinearSolver::~LinearSolver()
@@ -65,8 +66,8 @@ namespace Membrane
       }
     // Expert tuning through PETSc's options database (e.g. PETSC_OPTIONS="-mat_mumps_icntl_7 5"),
     // for one system with its prefix ("-shape_mat_mumps_icntl_7 5").
-    if (!options.options_prefix.empty())
-      check_petsc(KSPSetOptionsPrefix(ksp, options.options_prefix.c_str()), "KSPSetOptionsPrefix");
+    if (!options_prefix.empty())
+      check_petsc(KSPSetOptionsPrefix(ksp, options_prefix.c_str()), "KSPSetOptionsPrefix");
     check_petsc(KSPSetFromOptions(ksp), "KSPSetFromOptions");
   }
 

@@ -17,8 +17,4 @@ namespace Membrane
   /// This process's out-of-core directory, created (and stale ones of dead processes on
   /// this host removed) on the first call; $MUMPS_OOC_TMPDIR then names it.
   const std::string &out_of_core_directory();
-
-  /// Removes the directories `membrane-ooc-<host>-<pid>` in `base` whose process no longer
-  /// runs on this host (`host`); returns how many were removed.
-  unsigned int remove_stale_out_of_core_directories(const std::string &base, const std::string &host);
 } // namespace Membrane

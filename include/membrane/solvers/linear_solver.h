@@ -37,15 +37,14 @@ namespace Membrane
     /// direct: MUMPS writes the LU factors to disk (ICNTL(22) = 1) in $MUMPS_OOC_TMPDIR
     /// (default /tmp) instead of holding them in memory.
     bool out_of_core = false;
-    /// PETSc options prefix of this system's KSP ("shape_", "cahn_hilliard_"): expert settings
-    /// for one system only, e.g. PETSC_OPTIONS="-shape_ksp_monitor".
-    std::string options_prefix;
   };
 
   class LinearSolver
   {
   public:
-    explicit LinearSolver(LinearSolverOptions options = {});
+    /// `options_prefix`: PETSc options prefix of this system's KSP ("shape_", "cahn_hilliard_"),
+    /// so that expert settings reach one system only, e.g. PETSC_OPTIONS="-shape_ksp_monitor".
+    explicit LinearSolver(LinearSolverOptions options = {}, std::string options_prefix = "");
     ~LinearSolver();
     LinearSolver(const LinearSolver &)            = delete;
     LinearSolver &operator=(const LinearSolver &) = delete;
@@ -75,6 +74,7 @@ namespace Membrane
     unsigned int iterations() const;
 
     LinearSolverOptions options;
+    std::string         options_prefix;
     KSP                 ksp            = nullptr;
     Mat                 factorized     = nullptr; ///< copy of the matrix whose LU factors are in use
     Mat                 current        = nullptr; ///< the matrix of the last solve()
