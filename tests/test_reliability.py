@@ -336,6 +336,23 @@ def records_are_valid_json_whatever_the_arguments():
 
 
 @check
+def records_count_the_shape_factorizations():
+    # One numeric factorization of the shape system per trial step with the direct solver;
+    # with Reuse iterations the factors of the first step serve the following ones.
+    counts = {}
+    for reuse in (0, 20):
+        d = fresh(f'factorizations-{reuse}')
+        got, output = run(['--quiet', '--set', 'Time stepping/Maximum steps=4', '--set', 'Output/Write VTU=false',
+                           '--set', f'Linear solver/Reuse iterations={reuse}'] + out(d) + [SMALL])
+        require(got == 0, f'exit code {got}', output)
+        with open(os.path.join(d, 'summary.json')) as f:
+            summary = json.load(f)
+        counts[reuse] = (summary['shape_factorizations'], summary['steps'] + summary['rejected_steps'])
+    require(counts[0][0] == counts[0][1] == 4, f'without reuse: {counts[0][0]} factorizations for {counts[0][1]} trial steps')
+    require(counts[20][0] == 1, f'with reuse: {counts[20][0]} factorizations for {counts[20][1]} trial steps (expected 1)')
+
+
+@check
 def resume_records_changed_parameters_and_total_wall_time():
     d = fresh('resume')
     first = ['--quiet', '--set', 'Output/Write VTU=false', '--set', 'Checkpoint/Interval=3'] + out(d)
