@@ -134,6 +134,13 @@ namespace Membrane
       prm.declare_entry("Pressure stabilization", "0.5", Patterns::Double(0, 1),
                         "delta: weight of the residual of the tangential law in the area equation, which removes "
                         "checkerboard modes of the Q1 surface pressure gamma (0: none).");
+      prm.declare_entry("Line stiffness", "0", Patterns::Double(0, 10),
+                        "Weight s of the linearly implicit line-energy force in the tangential law. The force "
+                        "Y grad phi is taken at Gamma^m; a tangential move W stretches the frozen phi profile and "
+                        "changes the gradient energy by sigma xi^2 ((grad_s W)^T grad phi, (grad_s V)^T grad phi) to "
+                        "second order, which s = 1 adds implicitly (an O(tau^2) change of the step). Without it the "
+                        "explicit force limits tau to about h^2 / (L_X sigma) at a sharp interface. 0: explicit "
+                        "(the reference scheme).");
       prm.declare_entry("Curvature mass", "consistent", Patterns::Selection("consistent|lumped"),
                         "Mass matrix of the mean-curvature equation of the shape step. consistent: the reference "
                         "discretization, seven coupled fields per vertex (W, gamma, H, and the two tangential parts "
@@ -326,6 +333,7 @@ namespace Membrane
     prm.enter_subsection("Shape");
     evolve_shape                         = prm.get_bool("Evolve shape");
     shape_options.pressure_stabilization = prm.get_double("Pressure stabilization");
+    shape_options.line_stiffness         = prm.get_double("Line stiffness");
     shape_options.curvature_mass = prm.get("Curvature mass") == "lumped" ? CurvatureMass::lumped : CurvatureMass::consistent;
     shape_options.correct_area           = prm.get_bool("Correct area");
     shape_options.area_corrections       = prm.get_integer("Area projections");

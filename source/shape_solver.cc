@@ -100,6 +100,8 @@ namespace Membrane
     const double sigma = material.line_tension, xi2 = std::pow(material.transition_length, 2);
     const double tauL  = tau * material.shape_mobility;
     const double delta = options.pressure_stabilization;
+    // Weight of the linearized gradient energy in the tangential law (see below).
+    const double line_stiffness = options.line_stiffness * tauL * sigma * xi2;
 
     // The tangential law is tested, and the tangential part B~ of the curvature vector
     // expanded, along two tangent directions per vertex. On the periodic patch these are
@@ -252,7 +254,13 @@ namespace Membrane
                         {
                           const Tensor<1, spacedim> &t = test_tangent(i, tangent_k, d);
                           if (cj < spacedim)
-                            a = v * t[cj] * psi;
+                            // W . t psi, and the force's change under the move: the frozen phi
+                            // profile stretched by W changes grad phi by -(grad_s W)^T grad phi,
+                            // so tau L_X times -d/dW of (sigma xi^2 / 2)|grad phi|^2 adds
+                            // + tau L_X sigma xi^2 ((grad_s W)^T grad phi, (grad_s V)^T grad phi)
+                            // with V = psi t, (grad_s V)^T grad phi = (t . grad phi) grad_s psi.
+                            a = v * t[cj] * psi +
+                                line_stiffness * d.grad_phi[cj] * (t * d.grad_phi) * (gv * grad_psi);
                           else if (cj == pressure_component)
                             a = -tauL * (gv * t) * psi;
                         }

@@ -87,6 +87,7 @@ namespace Membrane
   {
     CurvatureMass curvature_mass  = CurvatureMass::consistent;
     double pressure_stabilization = 0.5; ///< delta (0: none)
+    double line_stiffness         = 0;   ///< weight of the implicit line-energy stiffness in the tangential law (0: explicit)
     bool   correct_area           = true;  ///< feed back the defect of the vertex areas
     unsigned int area_corrections = 1;     ///< projections per step onto the area constraint
     double area_tolerance         = 1e-12; ///< no projection below this relative defect
