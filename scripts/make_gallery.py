@@ -49,11 +49,14 @@ FIGURES = [
     ('Closed vesicles', 'Beyond the paper ([vesicles.md](vesicles.md)): a homogeneous vesicle relaxed to the prolate '
      'equilibrium at reduced volume 0.9 (A); a cap domain of 30 % of the area at the tip of a prolate vesicle '
      '(B) that buds out on a neck as the vesicle is deflated to v = 0.7 (C); a random mixture with H0_A = -2 (D) sorted into '
-     'outward-bulging phase-A domains (E); the energies of both phase-field runs decay (F; for the deflated '
-     'vesicle F less the work p dV of the volume target).',
+     'outward-bulging phase-A domains (E); a domain of 10 % of the area at v = 0.85 that stays a dome at '
+     'line tension sigma = 10 (F) and buds out at sigma = 200 (G); the energies of the phase-field runs decay (H; '
+     'for the deflated vesicles F less the work p dV of the volume target).',
      [('vesicle-prolate', None, 'A: prolate, v = 0.9', 20), ('vesicle-domain-budding', 0.0, 'B: cap, t = 0', 20),
       ('vesicle-domain-budding', None, 'C: cap, end', 20), ('vesicle-sorting', 0.0, 'D: mixture, t = 0', 20),
-      ('vesicle-sorting', None, 'E: sorted, end', 20), ('energy', ['vesicle-domain-budding', 'vesicle-sorting'])]),
+      ('vesicle-sorting', None, 'E: sorted, end', 20), ('vesicle-small-domain-sigma10', None, 'F: 10 %, sigma 10', 20),
+      ('vesicle-small-domain', None, 'G: 10 %, sigma 200', 20),
+      ('energy', ['vesicle-domain-budding', 'vesicle-sorting', 'vesicle-small-domain-sigma10', 'vesicle-small-domain'])]),
 ]
 
 lines = ['# Gallery: the paper\'s figures 7.1-7.4 and closed vesicles\n',

@@ -5,6 +5,7 @@ an input file of experiments/, or a variation of one (scripts/run_experiments.sh
 VARIANTS = {
     '7.4C-sigma1000': ('7.4C-sigma630', 'Material/Line tension=1000'),
     '7.4D-sigma1000': ('7.4D-small-domain', 'Material/Line tension=1000'),
+    'vesicle-small-domain-sigma10': ('vesicle-small-domain', 'Material/Line tension=10'),
 }
 
 
