@@ -253,6 +253,23 @@ namespace Membrane
            "<Mesh/Maximum refinement level> or <Mesh/Cells per side>";
   }
 
+  std::string Simulator::line_stiffness_note(const Rejection &last, const double tau) const
+  {
+    // The explicit phase force Y grad phi overshoots on interface-scale tangential modes once
+    // tau L_X sigma / h^2 is O(1) (docs/model.md); the implicit line stiffness removes that limit.
+    const Material &material = parameters.material;
+    if (!parameters.evolve_shape || last.kind != "energy_rise" || parameters.shape_options.line_stiffness > 0 ||
+        material.line_tension <= 0)
+      return "";
+    const double h     = reference_cell_size();
+    const double limit = h * h / (material.shape_mobility * material.line_tension);
+    if (tau > 10 * limit)
+      return "";
+    return "; tau is within 10x of the explicit limit of the phase force, h^2 / (L_X sigma) = " + format(limit) +
+           " for the finest cells: if the energy rises at the phase interface, <Shape/Line stiffness> = 1 lifts "
+           "that limit (docs/model.md)";
+  }
+
   bool Simulator::end_time_reached() const
   {
     return time >= parameters.end_time * (1 - 1e-12);
@@ -329,6 +346,7 @@ namespace Membrane
           return stop("step failed at t = " + format(time) + ": " + why.message +
                         (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>" + curvature_resolution_note()
                                              : "; reduce <Time stepping/Time step> or set Adaptive = true") +
+                        line_stiffness_note(why, trial) +
                         ". The last good state is kept",
                       true);
         if (step_control.stalled())
@@ -339,6 +357,7 @@ namespace Membrane
             return stop(std::string(budded ? "pinch-off approach" : "stalled") + " at t = " + format(time) +
                           ": half of the last 20 steps were rejected (last: " + why.message +
                           ") at tau = " + format(step_control.tau()) + curvature_resolution_note() +
+                          line_stiffness_note(why, step_control.tau()) +
                           ". The last good state is kept",
                         !budded);
           }

@@ -6,8 +6,9 @@ Set-up: experiments/vesicle-domain-budding.prm at sigma = 100 (a 30 % cap domain
 of refinement at the interface), where the explicit force Y grad phi of the tangential law limits tau
 to about 1e-5.
 1. Fixed tau = 2e-4 for 10 steps: with the explicit force (s = 0) a step raises the energy (by 0.38 at
-   the third step) and the run stops with exit code 2; with s = 1 the run ends at the end time and every
-   step lowers the energy.
+   the third step) and the run stops with exit code 2, naming the explicit limit h^2 / (L_X sigma) and
+   Shape/Line stiffness in its message; with s = 1 the run ends at the end time and every step lowers
+   the energy.
 2. One step from the initial state at tau = 1e-5, 2.5e-6, 6.25e-7: the energy after the step with s = 1
    differs from that with s = 0 by an amount that falls faster than tau (measured: 1.9e-5, 2.1e-6,
    2.7e-7, factors 9.1 and 7.9 per 4x smaller tau; asserted > 5). The added term is tau L_X sigma xi^2
@@ -48,6 +49,8 @@ explicit, e0 = run("explicit", 0, 2e-4, "--set", "Time stepping/End time=0.002")
 check(explicit.returncode == 2 and "energy would rise" in explicit.stdout,
       f"explicit force at tau = 2e-4: the run stops on an energy rise (exit {explicit.returncode}, "
       f"{len(e0) - 1} steps kept)")
+check("<Shape/Line stiffness> = 1 lifts" in explicit.stdout,
+      "its message names the explicit limit of the phase force and the remedy")
 implicit, e1 = run("implicit", 1, 2e-4, "--set", "Time stepping/End time=0.002")
 rises = np.diff(e1)
 check(implicit.returncode == 0 and len(e1) == 11 and np.all(rises < 0),

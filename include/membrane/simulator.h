@@ -147,6 +147,9 @@ namespace Membrane
     bool      refinement_fits(unsigned int n_refine);
     /// For a failed or stalled run: a note when the mesh does not resolve the curvature.
     std::string curvature_resolution_note() const;
+    /// For a failed or stalled run whose steps raise the energy: a note when tau is near the
+    /// explicit limit h^2 / (L_X sigma) of the phase force and Shape/Line stiffness is off.
+    std::string line_stiffness_note(const Rejection &last, double tau) const;
     /// Refine the initial mesh where the initial state asks for it (up to the maximum
     /// level), setting the initial state anew on each mesh.
     void      adapt_initial_mesh();
