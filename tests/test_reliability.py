@@ -372,6 +372,10 @@ def resume_records_changed_parameters_and_total_wall_time():
         summary = json.load(f)
     require(summary['steps'] == 6 and summary['wall_seconds'] > first_wall,
             f'summary after resume: steps {summary["steps"]}, wall {summary["wall_seconds"]} (first {first_wall})')
+    trials = summary['steps'] + summary['rejected_steps']
+    require(summary['shape_factorizations'] == trials,
+            f'summary after resume: {summary["shape_factorizations"]} shape factorizations for {trials} trial steps '
+            '(both segments count)')
 
 
 @check
