@@ -96,33 +96,6 @@ namespace Membrane
     FullMatrix<double>               local_matrix(n_dofs, n_dofs);
     dealii::Vector<double>           local_rhs(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
-    // The columns each row can couple to (the cases of the loop below): the other
-    // entries are zero, and skipping them leaves every sum unchanged.
-    std::vector<std::vector<unsigned int>> coupled_columns(n_dofs);
-    for (unsigned int i = 0; i < n_dofs; ++i)
-      {
-        const unsigned int ci = component[i];
-        const bool tangential_row = reduced ? (ci == 1 || ci == 2) : ci >= first_tangent_component;
-        for (unsigned int j = 0; j < n_dofs; ++j)
-          {
-            const unsigned int cj          = component[j];
-            const bool         same_vertex = vertex_of[j] == vertex_of[i];
-            const bool         vertex_part = cj == curvature_component || cj >= first_tangent_component;
-            bool               couples;
-            if (reduced && ci == 0)
-              couples = cj < spacedim || (cj == curvature_component && same_vertex);
-            else if (ci < spacedim && !tangential_row)
-              couples = cj == ci || (vertex_part && (!lumped || same_vertex));
-            else if (ci == pressure_component)
-              couples = cj < spacedim || cj == pressure_component;
-            else if (ci == curvature_component)
-              couples = cj < spacedim || cj == curvature_component || cj == pressure_component;
-            else
-              couples = cj < spacedim || cj == pressure_component;
-            if (couples)
-              coupled_columns[i].push_back(j);
-          }
-      }
 
     const double sigma = material.line_tension, xi2 = std::pow(material.transition_length, 2);
     const double tauL  = tau * material.shape_mobility;
@@ -231,7 +204,7 @@ namespace Membrane
                   const bool tangential_row = reduced ? (ci == 1 || ci == 2) : ci >= first_tangent_component;
                   const unsigned int tangent_k =
                     !tangential_row ? 0 : reduced ? ci - 1 : ci - first_tangent_component; // k of a tangential row
-                  for (const unsigned int j : coupled_columns[i])
+                  for (unsigned int j = 0; j < n_dofs; ++j)
                     {
                       const unsigned int         cj = component[j];
                       const double               v  = value[j];
