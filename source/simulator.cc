@@ -152,7 +152,7 @@ namespace Membrane
     if (scalars.count("wall_seconds"))
       earlier_wall_seconds = scalars.at("wall_seconds"); // the run's wall time counts all its segments
     if (scalars.count("shape_factorizations")) // so does its count of factorizations
-      earlier_shape_factorizations = static_cast<unsigned int>(scalars.at("shape_factorizations"));
+      shape_solver.resume_factorization_count(static_cast<unsigned int>(scalars.at("shape_factorizations")));
     if (scalars.count("pressure_work"))
       {
         pressure_work   = scalars.at("pressure_work");

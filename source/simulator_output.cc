@@ -115,7 +115,7 @@ namespace Membrane
                      {"previous_tau", previous_tau},
                      {"error_rejection_tau", step_control.error_rejection().tau},
                      {"error_rejection_estimate", step_control.error_rejection().error},
-                     {"shape_factorizations", earlier_shape_factorizations + shape_solver.n_factorizations()},
+                     {"shape_factorizations", shape_solver.n_factorizations()},
                      {"recent_attempts", attempts.count},
                      {"recent_rejections", attempts.rejected}};
     for (const auto &[kind, count] : rejections)
@@ -175,7 +175,7 @@ namespace Membrane
       .add("wall_seconds", wall_seconds)
       .add("grid_control_refused_fraction", step > 0 ? double(grid_control_skipped) / step : 0.0)
       .add("irreducible_error_steps", irreducible_error_steps)
-      .add("shape_factorizations", earlier_shape_factorizations + shape_solver.n_factorizations());
+      .add("shape_factorizations", shape_solver.n_factorizations());
     for (const char *c : {"energy", "bending_energy", "gaussian_energy", "gradient_energy", "well_energy", "area",
                           "area_drift", "mass", "mass_drift", "bud_height", "neck_radius", "bud_radius", "neck_ratio",
                           "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error", "cells",

@@ -152,6 +152,8 @@ namespace Membrane
     {
       return earlier_factorizations + (solver ? solver->n_factorizations() : 0);
     }
+    /// A resumed run continues the count of the run it continues (its checkpoint's).
+    void resume_factorization_count(const unsigned int earlier) { earlier_factorizations += earlier; }
 
   private:
     void assemble(const Surface &surface, const Geometry &geometry, const Material &material,
@@ -178,6 +180,6 @@ namespace Membrane
     VolumeCoupling                volume;   ///< of the current solve
     Vector pressure_column, volume_row, pressure_response; ///< c, b and z = A^-1 c of the last step
     double compliance = 1; ///< volume_compliance()
-    unsigned int earlier_factorizations = 0; ///< by the solvers of earlier meshes
+    unsigned int earlier_factorizations = 0; ///< by the solvers of earlier meshes and run segments
   };
 } // namespace Membrane

@@ -246,7 +246,6 @@ namespace Membrane
     dealii::Timer                      wall;
     double                             last_progress = -1e9;
     double earlier_wall_seconds = 0; ///< wall time of the segments before a resume
-    unsigned int earlier_shape_factorizations = 0; ///< shape factorizations of the segments before a resume
     double segment_start_time   = 0; ///< t at the start of this segment (for the ETA)
     std::unique_ptr<class LogFile> log; ///< rank 0: log.txt in the output directory
     std::vector<std::string> changed_on_resume; ///< "Section/Entry: old -> new" against the checkpoint's run
