@@ -110,7 +110,14 @@ namespace Membrane
       if (timer)
         scope.emplace(*timer, "Cahn-Hilliard solve");
       if (!solver)
-        solver = std::make_unique<LinearSolver>(solver_options, "cahn_hilliard_");
+        {
+          // Type = block preconditions the shape system only; the two-field
+          // Cahn-Hilliard system keeps its LU.
+          LinearSolverOptions own = solver_options;
+          if (own.type == "block")
+            own.type = "direct";
+          solver = std::make_unique<LinearSolver>(own, "cahn_hilliard_");
+        }
       iterations = solver->solve(matrix, solution, rhs);
     }
     space.constraints().distribute(solution);

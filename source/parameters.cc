@@ -218,10 +218,14 @@ namespace Membrane
       prm.leave_subsection();
 
       prm.enter_subsection("Linear solver");
-      prm.declare_entry("Type", "direct", Patterns::Selection("direct|gmres"),
-                        "direct: MUMPS (robust; default); gmres: GMRES with block-Jacobi ILU.");
-      prm.declare_entry("Relative tolerance", "1e-10", Patterns::Double(1e-16, 1), "For Type = gmres.");
-      prm.declare_entry("Maximum iterations", "2000", Patterns::Integer(1), "For Type = gmres.");
+      prm.declare_entry("Type", "direct", Patterns::Selection("direct|gmres|block"),
+                        "direct: MUMPS (robust; default); gmres: GMRES with block-Jacobi ILU; block: the shape "
+                        "system by FGMRES with a block preconditioner (algebraic multigrid on the pressure Schur "
+                        "complement and on the normal-motion/curvature pair; iterations independent of the mesh, "
+                        "cost per step proportional to the unknowns; consistent curvature mass only), the "
+                        "Cahn-Hilliard system by LU (benchmarks/README.md).");
+      prm.declare_entry("Relative tolerance", "1e-10", Patterns::Double(1e-16, 1), "For Type = gmres and block.");
+      prm.declare_entry("Maximum iterations", "2000", Patterns::Integer(1), "For Type = gmres and block.");
       prm.declare_entry("Reuse iterations", "0", Patterns::Integer(0, 100),
                         "For Type = direct: the LU factors of an earlier step precondition GMRES for the current "
                         "matrix; the matrix is factorized anew only when GMRES would need more than this many "
@@ -567,6 +571,10 @@ namespace Membrane
                 ExcMessage("Entries <Linear solver/Low-rank tolerance> and <Linear solver/Out of core> control the "
                            "MUMPS factorization and apply only to <Linear solver/Type> = direct; with Type = " +
                            solver.type + " set Low-rank tolerance = 0 and Out of core = false"));
+
+    AssertThrow(solver.type != "block" || parameters.shape_options.curvature_mass == CurvatureMass::consistent,
+                ExcMessage("Entry <Linear solver/Type> = block preconditions the seven-field shape system: it needs "
+                           "<Shape/Curvature mass> = consistent (got lumped; use Type = direct with it)"));
 
     AssertThrow(!parameters.output_directory.empty(),
                 ExcMessage("Entry <Output/Directory>: must not be empty; name a directory for the run's files "

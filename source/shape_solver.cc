@@ -5,6 +5,8 @@
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
 
 #include <array>
 #include <optional>
@@ -18,20 +20,6 @@ namespace Membrane
     constexpr unsigned int pressure_component = 3, curvature_component = 4, first_tangent_component = 5;
     /// Fixes the constant pressure where H = 0 (see the header); dimensionless.
     constexpr double pressure_regularization = 1e-12;
-
-    /// An orthonormal basis of the plane normal to nu (a vertex normal), a function of nu
-    /// alone, so that every cell at a vertex uses the same one. It follows the projection
-    /// of the z axis, which turns smoothly from vertex to vertex (a hanging vertex and its
-    /// parents get nearly the same frame), and that of the x axis near the poles.
-    std::array<Tensor<1, spacedim>, 2> tangent_frame(const Tensor<1, spacedim> &nu_in)
-    {
-      const Tensor<1, spacedim> nu = nu_in / nu_in.norm();
-      Tensor<1, spacedim>       e;
-      e[std::abs(nu[2]) < 0.9 ? 2 : 0] = 1;
-      Tensor<1, spacedim> t            = e - (e * nu) * nu;
-      t /= t.norm();
-      return {{t, cross_product_3d(nu, t)}};
-    }
 
     /// Frozen data of Gamma^m at one quadrature point.
     struct PointData
@@ -55,6 +43,7 @@ namespace Membrane
     if (solver)
       earlier_factorizations += solver->n_factorizations();
     solver.reset(); // the mesh (and so the pattern) changed
+    block_preconditioner.reset();
   }
 
   void ShapeSolver::assemble(const Surface &surface, const Geometry &geometry, const Material &material,
@@ -331,7 +320,19 @@ namespace Membrane
       if (volume.active)
         assemble_volume_coupling(surface, geometry, tau * material.shape_mobility);
     }
-    if (!solver)
+    this->solver_options = solver_options;
+    if (solver_options.type == "block")
+      {
+        AssertThrow(curvature_mass == CurvatureMass::consistent,
+                    ExcMessage("<Linear solver/Type> = block needs <Shape/Curvature mass> = consistent"));
+        std::optional<TimerOutput::Scope> scope;
+        if (timer)
+          scope.emplace(*timer, "shape solve");
+        if (!block_preconditioner)
+          block_preconditioner = std::make_unique<ShapePreconditioner>();
+        block_preconditioner->build(space, matrix, surface, geometry, material, options, tau, phi, periodic);
+      }
+    else if (!solver)
       solver = std::make_unique<LinearSolver>(solver_options, "shape_");
     return solve(surface, timer);
   }
@@ -339,7 +340,7 @@ namespace Membrane
   ShapeUpdate ShapeSolver::correct_area(const Surface &surface, const Vector &area_defect, TimerOutput *timer,
                                         const VolumeCoupling &volume_term)
   {
-    Assert(solver, ExcMessage("correct_area() needs a step() first"));
+    Assert(solver || block_preconditioner, ExcMessage("correct_area() needs a step() first"));
     Assert(volume_term.active == volume.active, ExcMessage("the volume term must be that of the step"));
     const double scale      = volume.compliance_scale; // of the step's operator
     volume                  = volume_term;
@@ -349,6 +350,39 @@ namespace Membrane
     return solve(surface, timer, /*same_matrix=*/true);
   }
 
+  void ShapeSolver::linear_solve(Vector &solution, const Vector &right_hand_side, const bool same_matrix)
+  {
+    if (solver_options.type != "block")
+      {
+        if (same_matrix)
+          solver->solve_again(solution, right_hand_side);
+        else
+          solver->solve(matrix, solution, right_hand_side);
+        return;
+      }
+    // FGMRES: the preconditioner's inner mass solves are iterations (to 1e-8), not a fixed operator.
+    SolverControl        control(solver_options.max_iterations,
+                                 solver_options.relative_tolerance * right_hand_side.l2_norm());
+    SolverFGMRES<Vector> fgmres(control, SolverFGMRES<Vector>::AdditionalData(krylov_restart));
+    solution = 0;
+    ++krylov_solves;
+    if (right_hand_side.l2_norm() == 0)
+      return;
+    try
+      {
+        fgmres.solve(matrix, solution, right_hand_side, *block_preconditioner);
+      }
+    catch (const SolverControl::NoConvergence &failure)
+      {
+        AssertThrow(false, ExcMessage("the linear solver (block) did not reach the relative residual " +
+                                      std::to_string(solver_options.relative_tolerance) + " in " +
+                                      std::to_string(failure.last_step) + " iterations (<Linear solver/Maximum "
+                                      "iterations>); it reached " +
+                                      std::to_string(failure.last_residual / right_hand_side.l2_norm())));
+      }
+    krylov_iterations += control.last_step();
+  }
+
   ShapeUpdate ShapeSolver::solve(const Surface &surface, TimerOutput *timer, const bool same_matrix)
   {
     Vector solution = space.make_owned();
@@ -356,10 +390,7 @@ namespace Membrane
       std::optional<TimerOutput::Scope> scope;
       if (timer)
         scope.emplace(*timer, "shape solve");
-      if (same_matrix)
-        solver->solve_again(solution, rhs);
-      else
-        solver->solve(matrix, solution, rhs);
+      linear_solve(solution, rhs, same_matrix);
     }
     const double volume_pressure = volume.active ? apply_volume_coupling(solution, same_matrix) : 0.0;
     space.constraints().distribute(solution);

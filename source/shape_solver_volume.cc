@@ -74,7 +74,7 @@ namespace Membrane
     if (!same_matrix)
       {
         pressure_response = space.make_owned();
-        solver->solve_again(pressure_response, pressure_column);
+        linear_solve(pressure_response, pressure_column, true);
       }
     double pressure = 0;
     if (!same_matrix)

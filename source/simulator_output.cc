@@ -175,7 +175,9 @@ namespace Membrane
       .add("wall_seconds", wall_seconds)
       .add("grid_control_refused_fraction", step > 0 ? double(grid_control_skipped) / step : 0.0)
       .add("irreducible_error_steps", irreducible_error_steps)
-      .add("shape_factorizations", shape_solver.n_factorizations());
+      .add("shape_factorizations", shape_solver.n_factorizations())
+      .add("shape_krylov_solves", shape_solver.n_krylov_solves())   // Linear solver/Type = block:
+      .add("shape_krylov_iterations", shape_solver.n_krylov_iterations()); // FGMRES, this run segment
     for (const char *c : {"energy", "bending_energy", "gaussian_energy", "gradient_energy", "well_energy", "area",
                           "area_drift", "mass", "mass_drift", "bud_height", "neck_radius", "bud_radius", "neck_ratio",
                           "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error", "cells",

@@ -66,6 +66,7 @@
 // floor of the compliance -b.z / (tau L_X A) the row is dropped (shape_solver_volume.cc).
 
 #include <membrane/physics/material.h>
+#include <membrane/shape_preconditioner.h>
 #include <membrane/solvers/linear_solver.h>
 #include <membrane/surface/geometry.h>
 
@@ -152,6 +153,9 @@ namespace Membrane
     {
       return earlier_factorizations + (solver ? solver->n_factorizations() : 0);
     }
+    /// Type = block: FGMRES iterations and solves so far (this run segment).
+    unsigned int n_krylov_iterations() const { return krylov_iterations; }
+    unsigned int n_krylov_solves() const { return krylov_solves; }
     /// A resumed run continues the count of the run it continues (its checkpoint's).
     void resume_factorization_count(const unsigned int earlier) { earlier_factorizations += earlier; }
 
@@ -166,6 +170,9 @@ namespace Membrane
     /// Eliminate p from the solution y of A y = r (z = A^-1 c computed after each new
     /// factorization); returns p.
     double apply_volume_coupling(Vector &solution, bool same_matrix);
+    /// matrix * solution = right_hand_side with the step's solver: the LU of `solver`, or
+    /// with Linear solver/Type = block, FGMRES with the block preconditioner.
+    void linear_solve(Vector &solution, const Vector &right_hand_side, bool same_matrix);
 
     const bool                    periodic;
     const CurvatureMass           curvature_mass;
@@ -177,6 +184,11 @@ namespace Membrane
     SparseMatrix                  matrix;
     Vector                        rhs;
     std::unique_ptr<LinearSolver> solver; ///< kept across steps: the ordering is reused
+    LinearSolverOptions           solver_options; ///< of the current step
+    std::unique_ptr<ShapePreconditioner> block_preconditioner; ///< Type = block: one per mesh, operators of every step
+    /// FGMRES basis size: the patch and vesicle solves converge in 15-60 iterations without a restart.
+    static constexpr unsigned int krylov_restart = 80;
+    unsigned int krylov_iterations = 0, krylov_solves = 0; ///< Type = block: FGMRES iterations and solves so far
     VolumeCoupling                volume;   ///< of the current solve
     Vector pressure_column, volume_row, pressure_response; ///< c, b and z = A^-1 c of the last step
     double compliance = 1; ///< volume_compliance()

@@ -196,4 +196,14 @@ namespace Membrane
         }
     return Utilities::MPI::sum(local, scalars.communicator());
   }
+
+  std::array<Tensor<1, spacedim>, 2> tangent_frame(const Tensor<1, spacedim> &nu_in)
+  {
+    const Tensor<1, spacedim> nu = nu_in / nu_in.norm();
+    Tensor<1, spacedim>       e;
+    e[std::abs(nu[2]) < 0.9 ? 2 : 0] = 1;
+    Tensor<1, spacedim> t            = e - (e * nu) * nu;
+    t /= t.norm();
+    return {{t, cross_product_3d(nu, t)}};
+  }
 } // namespace Membrane

@@ -9,6 +9,10 @@
 
 #include <membrane/surface/surface.h>
 
+#include <deal.II/base/tensor.h>
+
+#include <array>
+
 namespace Membrane
 {
   struct Geometry
@@ -26,6 +30,12 @@ namespace Membrane
 
   /// L2 projection of K = ((tr grad_s nu)^2 - |grad_s nu|^2)/2.
   Vector compute_gauss_curvature(const Surface &surface, const Vector &normal_ghosted);
+
+  /// An orthonormal basis of the plane normal to nu (a vertex normal), a function of nu
+  /// alone, so that every cell at a vertex uses the same one. It follows the projection
+  /// of the z axis, which turns smoothly from vertex to vertex (a hanging vertex and its
+  /// parents get nearly the same frame), and that of the x axis near the poles.
+  std::array<dealii::Tensor<1, spacedim>, 2> tangent_frame(const dealii::Tensor<1, spacedim> &nu);
 
   /// All three, ghosted.
   Geometry compute_geometry(const Surface &surface);
