@@ -66,76 +66,70 @@ namespace Membrane
 
     for (const auto &cell : scalars->dof_handler().active_cell_iterators())
       if (cell->is_locally_owned())
-      {
-        fe_values.reinit(cell);
-        vector_values.reinit(surface.vector_space().cell(cell));
-        fe_values.get_function_values(phi, phi_q);
-        fe_values.get_function_gradients(phi, grad_phi_q);
-        fe_values.get_function_values(geometry.mean_curvature, H_q);
-        vector_values[all_components].get_function_values(geometry.normal, nu_q);
-        const double reference_length[2] = {cell->vertex(1).distance(cell->vertex(0)),
-                                            cell->vertex(2).distance(cell->vertex(0))};
-        local_T = 0, local_M = 0, local_K = 0, local_Ke = 0, local_pair = 0, local_schur = 0;
-        for (auto &v : local_lumped)
-          v = 0;
-        for (unsigned int q = 0; q < n_q; ++q)
         {
-          const double ds     = fe_values.JxW(q);
-          const double kappa  = material.bending_rigidity->value(phi_q[q]);
-          const double excess = H_q[q] - material.spontaneous_curvature->value(phi_q[q]);
-          const double root   = std::sqrt(tauL * kappa);
-          // The implicit line stiffness of the tangential law (shape_solver.cc)
-          // acts along grad phi; its isotropic bound keeps the tangential block's
-          // solve positive definite.
-          const double                       line = line_stiffness * grad_phi_q[q].norm_square();
-          std::array<Tensor<1, spacedim>, 2> a, unit;
-          for (unsigned int k = 0; k < 2; ++k)
-          {
-            for (unsigned int c = 0; c < spacedim; ++c)
-              a[k][c] = fe_values.jacobian(q)[c][k] / reference_length[k];
-            unit[k] = a[k] / a[k].norm();
-          }
-          for (unsigned int i = 0; i < n; ++i)
-          {
-            const double               psi      = fe_values.shape_value(i, q) * ds;
-            const Tensor<1, spacedim> &grad_psi = fe_values.shape_grad(i, q);
-            for (unsigned int j = 0; j < n; ++j)
+          fe_values.reinit(cell);
+          vector_values.reinit(surface.vector_space().cell(cell));
+          fe_values.get_function_values(phi, phi_q);
+          fe_values.get_function_gradients(phi, grad_phi_q);
+          fe_values.get_function_values(geometry.mean_curvature, H_q);
+          vector_values[all_components].get_function_values(geometry.normal, nu_q);
+          const auto reference_length = reference_edge_lengths(cell);
+          local_T = 0, local_M = 0, local_K = 0, local_Ke = 0, local_pair = 0, local_schur = 0;
+          for (auto &v : local_lumped)
+            v = 0;
+          for (unsigned int q = 0; q < n_q; ++q)
             {
-              const double v  = fe_values.shape_value(j, q);
-              const double gg = (fe_values.shape_grad(j, q) * grad_psi) * ds;
-              local_M(i, j) += v * psi;
-              local_T(i, j) += v * psi + line * gg;
-              local_K(i, j) += gg;
-              // Normal row's H~ block, with its sign: -K_e.
-              local_Ke(i, j) += tauL * kappa * (gg + 0.5 * excess * excess * v * psi);
-              local_pair(i, j) += v * psi + root * gg;
-              // -S: the tangential law's Darcy flux tau L_X grad gamma with the
-              // stabilization's share, and the normal motion's tau L_X H gamma
-              // fed back through -H W.nu in div_s W.
-              local_schur(i, j) += tauL * ((1 + delta) * gg + H_q[q] * H_q[q] * v * psi);
+              const double ds     = fe_values.JxW(q);
+              const double kappa  = material.bending_rigidity->value(phi_q[q]);
+              const double excess = H_q[q] - material.spontaneous_curvature->value(phi_q[q]);
+              const double root   = std::sqrt(tauL * kappa);
+              // The implicit line stiffness of the tangential law (shape_solver.cc)
+              // acts along grad phi; its isotropic bound keeps the tangential block's
+              // solve positive definite.
+              const double                       line = line_stiffness * grad_phi_q[q].norm_square();
+              const auto                         a    = parameter_tangents(fe_values.jacobian(q), reference_length);
+              std::array<Tensor<1, spacedim>, 2> unit{{a[0] / a[0].norm(), a[1] / a[1].norm()}};
+              for (unsigned int i = 0; i < n; ++i)
+                {
+                  const double               psi      = fe_values.shape_value(i, q) * ds;
+                  const Tensor<1, spacedim> &grad_psi = fe_values.shape_grad(i, q);
+                  for (unsigned int j = 0; j < n; ++j)
+                    {
+                      const double v  = fe_values.shape_value(j, q);
+                      const double gg = (fe_values.shape_grad(j, q) * grad_psi) * ds;
+                      local_M(i, j) += v * psi;
+                      local_T(i, j) += v * psi + line * gg;
+                      local_K(i, j) += gg;
+                      // Normal row's H~ block, with its sign: -K_e.
+                      local_Ke(i, j) += tauL * kappa * (gg + 0.5 * excess * excess * v * psi);
+                      local_pair(i, j) += v * psi + root * gg;
+                      // -S: the tangential law's Darcy flux tau L_X grad gamma with the
+                      // stabilization's share, and the normal motion's tau L_X H gamma
+                      // fed back through -H W.nu in div_s W.
+                      local_schur(i, j) += tauL * ((1 + delta) * gg + H_q[q] * H_q[q] * v * psi);
+                    }
+                  local_lumped[0](i) += psi;
+                  for (unsigned int c = 0; c < spacedim; ++c)
+                    {
+                      local_lumped[1 + c](i) += psi * nu_q[q][c];
+                      for (unsigned int k = 0; k < 2; ++k)
+                        {
+                          local_lumped[4 + 3 * k + c](i) += psi * a[k][c];
+                          local_lumped[10 + 3 * k + c](i) += psi * unit[k][c];
+                        }
+                    }
+                }
             }
-            local_lumped[0](i) += psi;
-            for (unsigned int c = 0; c < spacedim; ++c)
-            {
-              local_lumped[1 + c](i) += psi * nu_q[q][c];
-              for (unsigned int k = 0; k < 2; ++k)
-              {
-                local_lumped[4 + 3 * k + c](i) += psi * a[k][c];
-                local_lumped[10 + 3 * k + c](i) += psi * unit[k][c];
-              }
-            }
-          }
+          cell->get_dof_indices(dofs);
+          add_M.add(local_M, dofs);
+          add_T.add(local_T, dofs);
+          add_K.add(local_K, dofs);
+          add_Ke.add(local_Ke, dofs);
+          add_pair.add(local_pair, dofs);
+          add_schur.add(local_schur, dofs);
+          for (unsigned int l = 0; l < n_lumped; ++l)
+            scalars->constraints().distribute_local_to_global(local_lumped[l], dofs, lumped[l]);
         }
-        cell->get_dof_indices(dofs);
-        add_M.add(local_M, dofs);
-        add_T.add(local_T, dofs);
-        add_K.add(local_K, dofs);
-        add_Ke.add(local_Ke, dofs);
-        add_pair.add(local_pair, dofs);
-        add_schur.add(local_schur, dofs);
-        for (unsigned int l = 0; l < n_lumped; ++l)
-          scalars->constraints().distribute_local_to_global(local_lumped[l], dofs, lumped[l]);
-      }
     for (auto *m : {&tangential_operator, &mass, &stiffness, &bending, &pair_operator, &pressure_schur})
       m->compress(VectorOperation::add);
     for (auto &v : lumped)
@@ -163,41 +157,56 @@ namespace Membrane
       for (const auto &cell : system->dof_handler().active_cell_iterators())
         if (cell->is_locally_owned())
           for (const unsigned int v : cell->vertex_indices())
-          {
-            const auto first = cell->vertex_dof_index(v, 0);
-            if (!system->owned().is_element(first) || system->constraints().is_constrained(first) ||
-                seen[system->owned().index_within_set(first)])
-              continue;
-            seen[system->owned().index_within_set(first)] = true;
-            VertexData data;
-            for (unsigned int c = 0; c < 7; ++c)
-              data.system[c] = cell->vertex_dof_index(v, c);
-            data.scalar   = scalars->cell(cell)->vertex_dof_index(v, 0);
-            const auto &r = *values[0];
-            data.mass     = r[data.scalar];
-            for (unsigned int c = 0; c < spacedim; ++c)
             {
-              data.normal[c] = (*values[1 + c])[data.scalar];
-              for (unsigned int k = 0; k < 2; ++k)
-              {
-                data.test_tangent[k][c] = (*values[4 + 3 * k + c])[data.scalar];
-                data.tangent[k][c]      = (*values[10 + 3 * k + c])[data.scalar];
-              }
-            }
-            if (!periodic)
-            {
-              // Closed surfaces test the tangential law and expand B~ in each
-              // vertex's own orthonormal frame (shape_solver.cc).
-              Tensor<1, spacedim> nu;
-              const auto          vector_cell = surface.vector_space().cell(cell);
+              const auto first = cell->vertex_dof_index(v, 0);
+              if (!system->owned().is_element(first) || system->constraints().is_constrained(first) ||
+                  seen[system->owned().index_within_set(first)])
+                continue;
+              seen[system->owned().index_within_set(first)] = true;
+              VertexData data;
+              for (unsigned int c = 0; c < 7; ++c)
+                data.system[c] = cell->vertex_dof_index(v, c);
+              data.scalar       = scalars->cell(cell)->vertex_dof_index(v, 0);
+              const double mass = (*values[0])[data.scalar];
+              // Averaged directions: the normal, the test tangents of the tangential law and the
+              // directions of B~ (integral psi t ds / integral psi ds).
+              Tensor<1, spacedim>                normal;
+              std::array<Tensor<1, spacedim>, 2> test_tangent, tangent;
               for (unsigned int c = 0; c < spacedim; ++c)
-                nu[c] = normal_values[vector_cell->vertex_dof_index(v, c)];
-              const auto frame = tangent_frame(nu);
-              for (unsigned int k = 0; k < 2; ++k)
-                data.test_tangent[k] = data.tangent[k] = data.mass * frame[k];
+                {
+                  normal[c] = (*values[1 + c])[data.scalar] / mass;
+                  for (unsigned int k = 0; k < 2; ++k)
+                    {
+                      test_tangent[k][c] = (*values[4 + 3 * k + c])[data.scalar] / mass;
+                      tangent[k][c]      = (*values[10 + 3 * k + c])[data.scalar] / mass;
+                    }
+                }
+              if (!periodic)
+                {
+                  // Closed surfaces test the tangential law and expand B~ in each
+                  // vertex's own orthonormal frame (shape_solver.cc).
+                  Tensor<1, spacedim> nu;
+                  const auto          vector_cell = surface.vector_space().cell(cell);
+                  for (unsigned int c = 0; c < spacedim; ++c)
+                    nu[c] = normal_values[vector_cell->vertex_dof_index(v, c)];
+                  const auto frame = tangent_frame(nu);
+                  for (unsigned int k = 0; k < 2; ++k)
+                    test_tangent[k] = tangent[k] = frame[k];
+                }
+              data.unit_normal = normal / normal.norm();
+              Tensor<2, spacedim> rows, columns;
+              for (unsigned int c = 0; c < spacedim; ++c)
+                {
+                  rows[0][c] = columns[c][0] = normal[c];
+                  rows[1][c]                 = test_tangent[0][c];
+                  rows[2][c]                 = test_tangent[1][c];
+                  columns[c][1]              = tangent[0][c];
+                  columns[c][2]              = tangent[1][c];
+                }
+              data.displacement = invert(rows);
+              data.curvature    = invert(columns);
+              vertices.push_back(data);
             }
-            vertices.push_back(data);
-          }
     }
     for (const auto i : system->owned())
       if (system->constraints().is_constrained(i))
@@ -208,24 +217,27 @@ namespace Membrane
 
   void ShapePreconditioner::mass_solve(Vector &x, const Vector &b) const
   {
-    // The consistent mass matrix is well conditioned (Jacobi-CG needs about 10
-    // iterations).
-    SolverControl    control(200, 1e-8 * b.l2_norm());
-    SolverCG<Vector> cg(control);
-    x = 0;
-    if (b.l2_norm() > 0)
-      cg.solve(mass, x, b, mass_jacobi);
+    // The consistent mass matrix is well conditioned (Jacobi-CG needs about 10 iterations).
+    cg_solve(mass, mass_jacobi, x, b);
   }
 
   void ShapePreconditioner::tangential_solve(Vector &x, const Vector &b) const
   {
-    if (!with_line_stiffness)
-      return mass_solve(x, b);
+    if (with_line_stiffness)
+      cg_solve(tangential_operator, tangential_amg, x, b);
+    else
+      mass_solve(x, b);
+  }
+
+  template <typename Preconditioner>
+  void ShapePreconditioner::cg_solve(const SparseMatrix &matrix, const Preconditioner &preconditioner, Vector &x,
+                                     const Vector &b)
+  {
     SolverControl    control(200, 1e-8 * b.l2_norm());
     SolverCG<Vector> cg(control);
     x = 0;
     if (b.l2_norm() > 0)
-      cg.solve(tangential_operator, x, b, tangential_amg);
+      cg.solve(matrix, x, b, preconditioner);
   }
 
   void ShapePreconditioner::update_residual(Vector &rho, const Vector &src, const Vector &z) const
@@ -256,17 +268,6 @@ namespace Membrane
     }
     update_residual(rho, src, z);
 
-    const auto frame_matrix = [](const VertexData &v)
-    {
-      Tensor<2, spacedim> q;
-      for (unsigned int c = 0; c < spacedim; ++c)
-      {
-        q[0][c] = v.normal[c] / v.mass;
-        q[1][c] = v.test_tangent[0][c] / v.mass;
-        q[2][c] = v.test_tangent[1][c] / v.mass;
-      }
-      return invert(q);
-    };
     std::array<Vector, 3> a{{scalars->make_owned(), scalars->make_owned(), scalars->make_owned()}};
     std::array<Vector, 3> x{{scalars->make_owned(), scalars->make_owned(), scalars->make_owned()}};
     // 2. The tangential motion from the tangential law, (W.a_k, psi) ~ M (W.a_k):
@@ -275,10 +276,10 @@ namespace Membrane
       const LocalValues r(rho);
       OwnedValues       a1(a[1]), a2(a[2]);
       for (const auto &v : vertices)
-      {
-        a1[v.scalar] = r[v.system[first_tangent_component]];
-        a2[v.scalar] = r[v.system[first_tangent_component + 1]];
-      }
+        {
+          a1[v.scalar] = r[v.system[first_tangent_component]];
+          a2[v.scalar] = r[v.system[first_tangent_component + 1]];
+        }
     }
     tangential_solve(x[1], a[1]);
     tangential_solve(x[2], a[2]);
@@ -286,14 +287,14 @@ namespace Membrane
       const LocalValues x1(x[1]), x2(x[2]);
       OwnedValues       zv(z);
       for (const auto &v : vertices)
-      {
-        Tensor<1, spacedim> b;
-        b[1]                        = x1[v.scalar];
-        b[2]                        = x2[v.scalar];
-        const Tensor<1, spacedim> w = frame_matrix(v) * b;
-        for (unsigned int c = 0; c < spacedim; ++c)
-          zv[v.system[c]] += w[c];
-      }
+        {
+          Tensor<1, spacedim> b;
+          b[1]                        = x1[v.scalar];
+          b[2]                        = x2[v.scalar];
+          const Tensor<1, spacedim> w = v.displacement * b;
+          for (unsigned int c = 0; c < spacedim; ++c)
+            zv[v.system[c]] += w[c];
+        }
     }
     update_residual(rho, src, z);
 
@@ -305,14 +306,13 @@ namespace Membrane
       const LocalValues r(rho);
       OwnedValues       fv(a[0]), gv(a[1]);
       for (const auto &v : vertices)
-      {
-        const Tensor<1, spacedim> unit = v.normal / v.normal.norm();
-        fv[v.scalar]                   = r[v.system[curvature_component]];
-        double projected               = 0;
-        for (unsigned int c = 0; c < spacedim; ++c)
-          projected += unit[c] * r[v.system[c]];
-        gv[v.scalar] = projected;
-      }
+        {
+          fv[v.scalar]     = r[v.system[curvature_component]];
+          double projected = 0;
+          for (unsigned int c = 0; c < spacedim; ++c)
+            projected += v.unit_normal[c] * r[v.system[c]];
+          gv[v.scalar] = projected;
+        }
     }
     Vector &u = x[0], &w = x[1], &y = x[2], &t2 = a[2];
     mass_solve(u, a[0]);
@@ -328,14 +328,14 @@ namespace Membrane
       const LocalValues uv(u), yv(y);
       OwnedValues       zv(z);
       for (const auto &v : vertices)
-      {
-        Tensor<1, spacedim> b;
-        b[0]                          = uv[v.scalar];
-        const Tensor<1, spacedim> inc = frame_matrix(v) * b;
-        for (unsigned int c = 0; c < spacedim; ++c)
-          zv[v.system[c]] += inc[c];
-        zv[v.system[curvature_component]] += yv[v.scalar];
-      }
+        {
+          Tensor<1, spacedim> b;
+          b[0]                          = uv[v.scalar];
+          const Tensor<1, spacedim> inc = v.displacement * b;
+          for (unsigned int c = 0; c < spacedim; ++c)
+            zv[v.system[c]] += inc[c];
+          zv[v.system[curvature_component]] += yv[v.scalar];
+        }
     }
     update_residual(rho, src, z);
 
@@ -350,20 +350,14 @@ namespace Membrane
       const LocalValues r(rho);
       OwnedValues       c1(a[1]), c2(a[2]);
       for (const auto &v : vertices)
-      {
-        Tensor<2, spacedim> columns;
-        Tensor<1, spacedim> b;
-        for (unsigned int c = 0; c < spacedim; ++c)
         {
-          columns[c][0] = v.normal[c] / v.mass;
-          columns[c][1] = v.tangent[0][c] / v.mass;
-          columns[c][2] = v.tangent[1][c] / v.mass;
-          b[c]          = r[v.system[c]];
+          Tensor<1, spacedim> b;
+          for (unsigned int c = 0; c < spacedim; ++c)
+            b[c] = r[v.system[c]];
+          const Tensor<1, spacedim> hb = v.curvature * b;
+          c1[v.scalar]                 = hb[1];
+          c2[v.scalar]                 = hb[2];
         }
-        const Tensor<1, spacedim> hb = invert(columns) * b;
-        c1[v.scalar]                 = hb[1];
-        c2[v.scalar]                 = hb[2];
-      }
     }
     mass_solve(x[1], a[1]);
     mass_solve(x[2], a[2]);
@@ -371,10 +365,10 @@ namespace Membrane
       const LocalValues b1(x[1]), b2(x[2]);
       OwnedValues       zv(z);
       for (const auto &v : vertices)
-      {
-        zv[v.system[first_tangent_component]] += b1[v.scalar];
-        zv[v.system[first_tangent_component + 1]] += b2[v.scalar];
-      }
+        {
+          zv[v.system[first_tangent_component]] += b1[v.scalar];
+          zv[v.system[first_tangent_component + 1]] += b2[v.scalar];
+        }
     }
     {
       const LocalValues r(src);

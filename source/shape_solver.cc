@@ -132,8 +132,7 @@ namespace Membrane
                 }
             }
           // Reference edge lengths turn the unit-cell Jacobian into a_k = dX/du_k.
-          const double reference_length[2] = {cell->vertex(1).distance(cell->vertex(0)),
-                                               cell->vertex(2).distance(cell->vertex(0))};
+          const auto reference_length = reference_edge_lengths(cell);
 
           for (unsigned int q = 0; q < n_q; ++q)
             {
@@ -147,11 +146,10 @@ namespace Membrane
               d.Y                   = Y_q[q];
               d.kappa               = material.bending_rigidity->value(p);
               d.excess              = H_q[q] - material.spontaneous_curvature->value(p);
+              const auto tangents = parameter_tangents(fe_values.jacobian(q), reference_length);
               for (unsigned int k = 0; k < 2; ++k)
                 {
-                  Tensor<1, spacedim> a;
-                  for (unsigned int c = 0; c < spacedim; ++c)
-                    a[c] = fe_values.jacobian(q)[c][k] / reference_length[k];
+                  const Tensor<1, spacedim> &a = tangents[k];
                   d.tangent[k]      = a;
                   d.unit_tangent[k] = a / a.norm();
                   d.d_phi[k]   = grad_phi * a;

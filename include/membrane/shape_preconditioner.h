@@ -56,12 +56,15 @@ namespace Membrane
   private:
     struct VertexData
     {
-      std::array<dealii::types::global_dof_index, 7> system;       ///< the vertex's seven DoFs
-      dealii::types::global_dof_index                scalar;       ///< its DoF in the scalar space
-      double                                         mass = 0;     ///< integral psi ds (lumped M)
-      dealii::Tensor<1, spacedim>                    normal;       ///< integral psi nu ds
-      std::array<dealii::Tensor<1, spacedim>, 2>     test_tangent; ///< integral psi t_k ds (tangential law)
-      std::array<dealii::Tensor<1, spacedim>, 2>     tangent;      ///< integral psi t_k ds (B~ columns)
+      std::array<dealii::types::global_dof_index, 7> system;      ///< the vertex's seven DoFs
+      dealii::types::global_dof_index                scalar;      ///< its DoF in the scalar space
+      dealii::Tensor<1, spacedim>                    unit_normal; ///< the averaged normal, normalized
+      /// W from (W.nu, W.t_1, W.t_2) with the averaged normal and test tangents of the
+      /// normal and tangential laws (the inverse of the matrix of those rows).
+      dealii::Tensor<2, spacedim> displacement;
+      /// (H~, B~_1, B~_2) from the curvature rows' vector H~ nu + B~_k t_k (the inverse of the
+      /// matrix with the averaged normal and B~ directions as columns).
+      dealii::Tensor<2, spacedim> curvature;
     };
 
     /// rho = src - A z.
@@ -81,9 +84,12 @@ namespace Membrane
     bool                                         with_line_stiffness = false;
     void                                         tangential_solve(Vector &x, const Vector &b) const;
     void                                         mass_solve(Vector &x, const Vector &b) const;
-    const SparseMatrix                          *system_matrix = nullptr;
-    bool                    patterns_ready                     = false; ///< the scalar matrices have the mesh's pattern
-    std::vector<VertexData> vertices;                                   ///< owned vertices without constraints
+    /// x = matrix^-1 b by CG to 1e-8 relative.
+    template <typename Preconditioner>
+    static void cg_solve(const SparseMatrix &matrix, const Preconditioner &preconditioner, Vector &x, const Vector &b);
+    const SparseMatrix     *system_matrix  = nullptr;
+    bool                    patterns_ready = false; ///< the scalar matrices have the mesh's pattern
+    std::vector<VertexData> vertices;               ///< owned vertices without constraints
     std::vector<std::pair<dealii::types::global_dof_index, double>> constrained; ///< owned constrained DoFs, 1/A_ii
   };
 } // namespace Membrane

@@ -9,6 +9,7 @@
 
 #include <membrane/surface/surface.h>
 
+#include <deal.II/base/derivative_form.h>
 #include <deal.II/base/tensor.h>
 
 #include <array>
@@ -36,6 +37,27 @@ namespace Membrane
   /// of the z axis, which turns smoothly from vertex to vertex (a hanging vertex and its
   /// parents get nearly the same frame), and that of the x axis near the poles.
   std::array<dealii::Tensor<1, spacedim>, 2> tangent_frame(const dealii::Tensor<1, spacedim> &nu);
+
+  /// Lengths of a cell's edges along the parameter directions u_1, u_2 in the reference
+  /// (input) mesh, which turn the unit-cell Jacobian into a_k = dX/du_k.
+  template <typename CellIterator>
+  std::array<double, 2> reference_edge_lengths(const CellIterator &cell)
+  {
+    return {{cell->vertex(1).distance(cell->vertex(0)), cell->vertex(2).distance(cell->vertex(0))}};
+  }
+
+  /// a_k = dX/du_k at a point: the columns of the unit-cell Jacobian over the reference edge
+  /// lengths (the parameter directions of the patch, the tangents of the tangential law).
+  inline std::array<dealii::Tensor<1, spacedim>, 2>
+  parameter_tangents(const dealii::DerivativeForm<1, dim, spacedim> &jacobian,
+                     const std::array<double, 2>                    &reference_length)
+  {
+    std::array<dealii::Tensor<1, spacedim>, 2> a;
+    for (unsigned int k = 0; k < 2; ++k)
+      for (unsigned int c = 0; c < spacedim; ++c)
+        a[k][c] = jacobian[c][k] / reference_length[k];
+    return a;
+  }
 
   /// All three, ghosted.
   Geometry compute_geometry(const Surface &surface);
