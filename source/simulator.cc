@@ -267,6 +267,10 @@ namespace Membrane
     const double limit = h * h / (material.shape_mobility * material.line_tension);
     if (tau > 10 * limit)
       return "";
+    // The stiffness is sigma xi^2 |grad_s phi|^2: without an interface (phi uniform, or a
+    // broad profile that has not sharpened) there is none, and the rise has another cause.
+    if (largest_relative_steepness(surface, phi, material.transition_length) < 0.5)
+      return "";
     return "; tau is within 10x of the explicit limit of the phase force, h^2 / (L_X sigma) = " + format(limit) +
            " for the finest cells: if the energy rises at the phase interface, <Shape/Line stiffness> = 1 lifts "
            "that limit (docs/model.md)";

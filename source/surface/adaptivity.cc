@@ -154,6 +154,16 @@ namespace Membrane
     return Utilities::MPI::logical_or(leaves, triangulation.get_communicator());
   }
 
+  double largest_relative_steepness(const Surface &surface, const Vector &phi, const double xi)
+  {
+    double            local = 0;
+    const LocalValues phi_values(phi);
+    for (const auto &cell : surface.scalar_space().dof_handler().get_triangulation().active_cell_iterators())
+      if (cell->is_locally_owned())
+        local = std::max(local, relative_steepness(surface.scalar_space(), cell, phi_values, cell_size(surface, cell), xi));
+    return Utilities::MPI::max(local, surface.scalar_space().communicator());
+  }
+
   double largest_curvature_per_cell(const Triangulation &triangulation, const Surface &surface, const Geometry &geometry)
   {
     double            local = 0;

@@ -66,6 +66,11 @@ namespace Membrane
   double largest_curvature_per_cell(const Triangulation &triangulation, const Surface &surface,
                                     const Geometry &geometry);
 
+  /// The largest relative steepness of phi over the cells (over all ranks): the variation of phi
+  /// across a cell divided by h and by half the largest slope 3 / (4 xi) of the equilibrium
+  /// interface. Above 1 a cell holds a sharpened interface; about 0 where phi is uniform.
+  double largest_relative_steepness(const Surface &surface, const Vector &phi_ghosted, double transition_length);
+
   /// True (on every rank) when the mesh no longer resolves what mark_cells() refines for,
   /// between two scheduled adaptations: a cell below the maximum level holds the
   /// interface and is coarser than the interface target, or bends by more than twice the
