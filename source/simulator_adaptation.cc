@@ -66,9 +66,7 @@ namespace Membrane
           };
           // Parent corner i is vertex i of child i.
           const auto midpoint = [&](const unsigned int a, const unsigned int b) {
-            const Point<spacedim>     A = position(a, a), B = position(b, b);
-            const Tensor<1, spacedim> chord = B - A, na = normal(a, a), nb = normal(b, b);
-            return Point<spacedim>(0.5 * (A + B) + ((nb * chord) * nb - (na * chord) * na) / 8);
+            return hermite_midpoint(position(a, a), position(b, b), normal(a, a), normal(b, b));
           };
           // Edge midpoints: 0-1 is vertex 1 of child 0, 0-2 vertex 2 of child 0,
           // 1-3 vertex 1 of child 3, 2-3 vertex 2 of child 3; the centre is vertex 3 of child 0.
@@ -187,6 +185,7 @@ namespace Membrane
     if (n_refine + n_coarsen == 0)
       return false;
     const unsigned int cells_before  = triangulation.n_global_active_cells();
+    const EnergyTerms  terms_before  = energy;
     const double       energy_before = energy.total();
 
     // Everything the next step needs: D, phi, the reference areas (as the ratio
@@ -249,7 +248,10 @@ namespace Membrane
     if (!options.quiet)
       pcout << "Mesh adapted at t = " << time << ": " << cells_before << " -> " << triangulation.n_global_active_cells()
             << " cells (" << n_refine << " flagged for refinement, " << n_coarsen << " for coarsening), energy jump "
-            << energy.total() - energy_before << ", mass shift " << shift << '\n';
+            << energy.total() - energy_before << " (bending " << energy.bending - terms_before.bending << ", Gaussian "
+            << energy.gaussian - terms_before.gaussian << ", line "
+            << energy.gradient + energy.well - terms_before.gradient - terms_before.well << "), mass shift " << shift
+            << '\n';
     return true;
   }
 } // namespace Membrane

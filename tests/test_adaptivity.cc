@@ -7,6 +7,7 @@
 #include "fixed_surface.h"
 
 #include <membrane/surface/adaptivity.h>
+#include <membrane/surface/initial_shapes.h>
 
 #include <gtest/gtest.h>
 
@@ -79,4 +80,50 @@ TEST(Adaptivity, InterfaceIndicatorRefinesSharpNotBroadProfiles)
   EXPECT_EQ(refine_broad, 0u);
   EXPECT_EQ(coarsen_broad, 4 * refine);
   std::cout << coarsen_broad << " refined cells flagged for coarsening\n";
+}
+
+// Coarsening drops the inner vertices of a family of four cells; refining again would put them
+// back at the Hermite midpoints of the parent (Smooth new vertices). Where the surface is smooth
+// they lie there already up to O(h^4), and every family the indicators allow is coarsened; a
+// family whose centre vertex is off that surface by 1 % of the parent's size (a mesh-scale
+// feature that the coarse mesh cannot carry, and whose loss changes the bending energy) is kept
+// at Coarsening tolerance 3e-3, and coarsened at 1 (no bound) and 0.02.
+TEST(Adaptivity, CoarseningKeepsFamiliesTheCoarseMeshCannotCarry)
+{
+  Testing::FixedSurface setup(16);
+  const unsigned int    base = setup.tria.n_global_levels() - 1; // the level of the 16 x 16 cells
+  setup.tria.refine_global(1);
+  setup.surface.setup();
+  set_cosine_modes(setup.surface, {{0.02, 1, 1, 0}, {0.02, 1, -1, 0}});
+  InitialPhaseOptions uniform;
+  uniform.type          = "uniform";
+  uniform.uniform_value = -1;
+  setup.set_phase(uniform);
+  setup.update_geometry();
+
+  // Raise the centre vertex (vertex 3 of child 0) of the family whose parent is centred at (6.5, 4.5) / 16.
+  const double parent_size = 1.0 / 16;
+  Vector       displaced   = setup.surface.vector_space().make_owned();
+  displaced                = setup.surface.displacement();
+  for (const auto &cell : setup.surface.vector_space().dof_handler().active_cell_iterators())
+    if (cell->parent()->center().distance(dealii::Point<3>(6.5 / 16, 4.5 / 16, 0)) < 1e-9 &&
+        cell == cell->parent()->child(0))
+      {
+        const auto dof  = cell->vertex_dof_index(3, 2);
+        displaced[dof] = displaced[dof] + 0.01 * parent_size;
+      }
+  displaced.compress(dealii::VectorOperation::insert);
+  setup.surface.set_displacement(displaced);
+  setup.update_geometry();
+
+  AdaptivityOptions options;
+  options.max_level = 1;
+  const auto coarsened = [&](const double tolerance) {
+    options.coarsening_tolerance = tolerance;
+    return mark(setup, options, base).second;
+  };
+  EXPECT_EQ(coarsened(1), 4 * 256u);
+  EXPECT_EQ(coarsened(0.02), 4 * 256u);
+  EXPECT_EQ(coarsened(3e-3), 4 * 255u);
+  EXPECT_EQ(coarsened(0), 0u);
 }

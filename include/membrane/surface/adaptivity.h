@@ -11,7 +11,10 @@
 //    curvature |H|/2 + sqrt(H^2/4 - K) of the mean H and K of the cell's vertices.
 // A cell is refined if an indicator asks for it and its level is below Maximum
 // refinement level; it is coarsened (down to the input mesh) if neither indicator
-// would ask for it at twice its size. Adaptation happens every Interval steps.
+// would ask for it at twice its size, and if coarsening drops no more than the interpolation
+// error Coarsening tolerance: the family's five inner vertices lie within that fraction of the
+// parent's size from where refining it again would put them (hermite_midpoint). Adaptation
+// happens every Interval steps.
 
 #include <membrane/surface/geometry.h>
 
@@ -27,6 +30,7 @@ namespace Membrane
     double       interface_phi          = 0.9; ///< |phi| below this at a vertex marks the interface (resolution warning)
     double       curvature_resolution   = 0.3; ///< target h |kappa_max| <= this
     bool         smooth_new_vertices    = true; ///< new vertices on a smooth (Hermite) surface
+    double       coarsening_tolerance   = 3e-3; ///< largest surface interpolation error (per parent size) a coarsening may drop
     double       memory_limit           = 0;    ///< bytes of all ranks after a refinement (0: 80 % of available)
 
     bool enabled() const { return max_level > 0; }
@@ -51,6 +55,13 @@ namespace Membrane
   /// as the interface sharpens, so this, not their present size, is the resolution of a run.
   double interface_cell_size(const Surface &surface, const Vector &phi_ghosted, double transition_length,
                              const AdaptivityOptions &options, unsigned int base_level);
+
+  /// The midpoint of the cubic Hermite curve between the points A and B whose tangents are the
+  /// chord B - A projected on the tangent planes of the unit normals nu_A and nu_B:
+  /// (A + B)/2 + (T_A - T_B)/8. Where new vertices of a refined edge go (Smooth new vertices).
+  dealii::Point<spacedim> hermite_midpoint(const dealii::Point<spacedim> &A, const dealii::Point<spacedim> &B,
+                                           const dealii::Tensor<1, spacedim> &normal_A,
+                                           const dealii::Tensor<1, spacedim> &normal_B);
 
   /// Set refinement and coarsening flags on the locally owned cells of `triangulation`
   /// (the surface's) by the indicators above; `base_level` is the level of the input
