@@ -25,12 +25,14 @@ namespace Membrane
   }
 
   void CahnHilliardSolver::assemble(const Surface &surface, const Geometry &geometry, const Material &material,
-                                    const CahnHilliardOptions &options, const double tau, const Vector &phi_old)
+                                    const CahnHilliardOptions &options, const double tau, const Vector &phi_old,
+                                    const ThermalNoise &noise)
   {
     matrix = 0;
     rhs    = 0;
     const QGauss<dim>       quadrature(2);
-    const UpdateFlags       flags = update_values | update_gradients | update_JxW_values;
+    const UpdateFlags       flags = update_values | update_gradients | update_JxW_values | update_jacobians |
+                              update_normal_vectors;
     FEValues<dim, spacedim> fe_values(surface.mapping(), space.fe(), quadrature, flags);
     FEValues<dim, spacedim> field_values(surface.mapping(), surface.scalar_space().fe(), quadrature, update_values);
     const FEValuesExtractors::Scalar phi_part(0), potential_part(1);
@@ -43,6 +45,11 @@ namespace Membrane
 
     const double sigma = material.line_tension, xi2 = std::pow(material.transition_length, 2);
     const double mobility = material.phase_mobility;
+    // Conserved noise (model B, MODEL.md section 10), in the mass row times tau:
+    // + sqrt(2 k_BT L_phi tau) (zeta_h, grad_s psi), zeta_h constant per cell, two independent
+    // normals along an orthonormal tangent frame scaled by 1/sqrt(|cell|). A constant psi has no
+    // gradient, so integral phi ds is kept exactly.
+    const double noise_scale = noise.active() ? std::sqrt(2 * noise.temperature * mobility * tau) : 0.0;
     // The implicit coefficient S of the scheme (see the header), per quadrature point.
     const bool   linearized = options.scheme == "linearized";
     const double constant_S = options.scheme == "stabilized" ? options.stabilization : 0.0;
@@ -58,6 +65,23 @@ namespace Membrane
           field_values.get_function_values(geometry.gauss_curvature, K);
           local_matrix = 0;
           local_rhs    = 0;
+          Tensor<1, spacedim> zeta;
+          if (noise.active())
+            {
+              double area = 0;
+              for (unsigned int q = 0; q < n_q; ++q)
+                area += fe_values.JxW(q);
+              // The frame at the cell's first quadrature point: t_1 along a_1, t_2 = n x t_1.
+              Tensor<1, spacedim> t1;
+              for (unsigned int d = 0; d < spacedim; ++d)
+                t1[d] = fe_values.jacobian(0)[d][0];
+              t1 /= t1.norm();
+              const Tensor<1, spacedim> t2  = cross_product_3d(fe_values.normal_vector(0), t1);
+              const std::uint64_t       key = cell_key(cell->id());
+              zeta = (standard_normal(noise.seed, noise.step, key, 0) * t1 +
+                      standard_normal(noise.seed, noise.step, key, 1) * t2) *
+                     (noise_scale / std::sqrt(area));
+            }
           for (unsigned int q = 0; q < n_q; ++q)
             {
               const double S = linearized ? DoubleWell::second_derivative(old[q]) : constant_S;
@@ -82,7 +106,7 @@ namespace Membrane
                       local_matrix(i, j) += (psi * phi_j + tau * mobility * grad_psi * grad_Y_j + chi * Y_j -
                                              sigma * xi2 * grad_chi * grad_phi_j - sigma * S * chi * phi_j) * ds;
                     }
-                  local_rhs(i) += (psi * old[q] + chi * explicit_potential) * ds;
+                  local_rhs(i) += (psi * old[q] + chi * explicit_potential + zeta * grad_psi) * ds;
                 }
             }
           cell->get_dof_indices(dof_indices);
@@ -95,13 +119,14 @@ namespace Membrane
   unsigned int CahnHilliardSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
                                         const CahnHilliardOptions &options, const LinearSolverOptions &solver_options,
                                         const double tau, const Vector &phi_old, Vector &phi_new,
-                                        Vector &chemical_potential, TimerOutput *timer)
+                                        Vector &chemical_potential, TimerOutput *timer,
+                                        const ThermalNoise &noise)
   {
     {
       std::optional<TimerOutput::Scope> scope;
       if (timer)
         scope.emplace(*timer, "Cahn-Hilliard assembly");
-      assemble(surface, geometry, material, options, tau, phi_old);
+      assemble(surface, geometry, material, options, tau, phi_old, noise);
     }
     Vector       solution   = space.make_owned();
     unsigned int iterations = 0;

@@ -47,6 +47,7 @@ namespace Membrane
                           "L_X: mobility of the overdamped shape flow dX/dt = -L_X (E_n n + E_t).");
         prm.declare_entry("Phase mobility", "0.05", Patterns::Double(0, max_double),
                           "L_phi: mobility of lateral sorting dphi/dt = L_phi lap_s Y.");
+        declare_thermal_parameters(prm);
       }
       prm.leave_subsection();
     }
@@ -313,6 +314,7 @@ namespace Membrane
     material.transition_length = prm.get_double("Transition length");
     material.shape_mobility    = prm.get_double("Shape mobility");
     material.phase_mobility    = prm.get_double("Phase mobility");
+    thermal                    = parse_thermal_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Time stepping");
@@ -575,6 +577,12 @@ namespace Membrane
     AssertThrow(solver.type != "block" || parameters.shape_options.curvature_mass == CurvatureMass::consistent,
                 ExcMessage("Entry <Linear solver/Type> = block preconditions the seven-field shape system: it needs "
                            "<Shape/Curvature mass> = consistent (got lumped; use Type = direct with it)"));
+
+    AssertThrow(!parameters.thermal.active() || (!parameters.evolve_shape && !parameters.adaptive),
+                ExcMessage("Entry <Material/Temperature> = " + number(parameters.thermal.temperature) +
+                           " > 0 needs <Shape/Evolve shape> = false (the shape noise is not implemented yet) and "
+                           "<Time stepping/Adaptive> = false (a fixed tau: the energy fluctuates, so the "
+                           "energy-descent control does not apply); or set Temperature = 0"));
 
     AssertThrow(!parameters.output_directory.empty(),
                 ExcMessage("Entry <Output/Directory>: must not be empty; name a directory for the run's files "

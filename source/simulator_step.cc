@@ -216,8 +216,11 @@ namespace Membrane
     Vector potential = surface.scalar_space().make_owned();
     try
       {
-        solver_iterations = cahn_hilliard.step(surface, geometry, material, parameters.cahn_hilliard,
-                                               parameters.linear_solver, tau_trial, phi, phi_new, potential, &timer);
+        ThermalNoise noise = parameters.thermal;
+        noise.step         = step;
+        solver_iterations  = cahn_hilliard.step(surface, geometry, material, parameters.cahn_hilliard,
+                                                parameters.linear_solver, tau_trial, phi, phi_new, potential, &timer,
+                                                noise);
         if (!std::isfinite(phi_new.l2_norm()) || phi_new.linfty_norm() > 10)
           return restore("non_finite", "phi became non-finite or |phi| > 10");
         chemical_potential = potential;
@@ -264,7 +267,8 @@ namespace Membrane
     // A moving volume target or a prescribed pressure does work p dV on the membrane:
     // F - integral p dV, not F, is what the constrained gradient flow decreases.
     const double rise = energy.total() - before.energy.total() - step_pressure_work;
-    if (rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
+    // At a temperature the energy fluctuates: a rise is no sign of a failed step.
+    if (!parameters.thermal.active() && rise > parameters.energy_tolerance * std::max(std::abs(before.energy.total()), 1e-300))
       return restore("energy_rise", "the energy would rise by " + format(rise));
     step_error     = previous_tau > 0 ? local_error(tau_trial) : -1;
     error_estimate = step_control.controls_accuracy() && step_error >= 0 ? step_error / step_control.accuracy() : -1;

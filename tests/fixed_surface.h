@@ -38,10 +38,11 @@ namespace Membrane::Testing
     {
       phi = surface.scalar_space().ghosted_copy(make_initial_phase(surface, initial));
     }
-    void step(double tau)
+    void step(double tau, const ThermalNoise &noise = {})
     {
       Vector next = surface.scalar_space().make_owned(), potential = surface.scalar_space().make_owned();
-      solver.step(surface, geometry, material, options, LinearSolverOptions(), tau, phi, next, potential);
+      solver.step(surface, geometry, material, options, LinearSolverOptions(), tau, phi, next, potential, nullptr,
+                  noise);
       phi = next;
     }
     double energy() const { return compute_energy(surface, geometry, phi, material).total(); }

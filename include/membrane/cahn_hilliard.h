@@ -12,6 +12,7 @@
 //   explicit:   S = 0, the paper's choice (tau limited by the double well).
 
 #include <membrane/physics/material.h>
+#include <membrane/physics/thermal_noise.h>
 #include <membrane/solvers/linear_solver.h>
 #include <membrane/surface/geometry.h>
 
@@ -39,11 +40,11 @@ namespace Membrane
     unsigned int step(const Surface &surface, const Geometry &geometry, const Material &material,
                       const CahnHilliardOptions &options, const LinearSolverOptions &solver, double tau,
                       const Vector &phi_old_ghosted, Vector &phi_new_owned, Vector &chemical_potential_owned,
-                      dealii::TimerOutput *timer = nullptr);
+                      dealii::TimerOutput *timer = nullptr, const ThermalNoise &noise = {});
 
   private:
     void assemble(const Surface &surface, const Geometry &geometry, const Material &material,
-                  const CahnHilliardOptions &options, double tau, const Vector &phi_old);
+                  const CahnHilliardOptions &options, double tau, const Vector &phi_old, const ThermalNoise &noise);
 
     const bool                    periodic;
     FieldSpace                    space; ///< component 0: phi, component 1: Y

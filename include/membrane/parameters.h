@@ -35,6 +35,7 @@ namespace Membrane
     std::string cosine_modes, displacement_expression;
     // Physics
     Material            material;
+    ThermalNoise        thermal; ///< k_BT and seed (its step is set by each step)
     InitialPhaseOptions initial_phase;
     // Time stepping
     double       end_time = 0.01, time_step = 1e-4;

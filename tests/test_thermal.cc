@@ -1,0 +1,114 @@
+// Thermal noise of the Cahn-Hilliard step (MODEL.md section 10): equipartition
+// of phi in one phase. On a flat 16 x 16 patch at phi_0 = -1 with sigma = 1, xi
+// = 0.1, L_phi = 1, the fluctuating linearized Cahn-Hilliard equation is, mode
+// by mode, an Ornstein-Uhlenbeck process with the stationary variance
+// <|phi_q|^2> = k_BT / (A sigma (xi^2 q^2 + f''(phi_0))), f''(-1) = 9/4. The
+// linearized scheme is backward Euler for it, whose stationary variance is that
+// divided by 1 + lambda tau / 2 (lambda = L_phi sigma q^2 (xi^2 q^2 + f''), the
+// mode's decay rate). The modes |q| = 2 pi (four real amplitudes) and 2 pi sqrt
+// 2 are compared with it, with an error bar from batch means; the bar is small
+// enough that a noise amplitude off by 20 % (variance off by 44 %) fails. The
+// noise is conserved: integral phi ds does not change.
+#include "fixed_surface.h"
+
+#include <membrane/physics/thermal_noise.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <numeric>
+#include <vector>
+
+using namespace Membrane;
+
+TEST(Thermal, GeneratorIsAPureFunctionOfItsKeyWithUnitVariance)
+{
+  EXPECT_EQ(standard_normal(3, 17, 12345, 1), standard_normal(3, 17, 12345, 1));
+  EXPECT_NE(standard_normal(3, 17, 12345, 1), standard_normal(3, 17, 12345, 0));
+  EXPECT_NE(standard_normal(3, 17, 12345, 1), standard_normal(3, 18, 12345, 1));
+  EXPECT_NE(standard_normal(3, 17, 12345, 1), standard_normal(4, 17, 12345, 1));
+  const unsigned int n   = 200000;
+  double             sum = 0, square = 0, fourth = 0;
+  for (unsigned int i = 0; i < n; ++i)
+    {
+      const double x = standard_normal(1, i / 100, i % 100, i % 2);
+      sum += x;
+      square += x * x;
+      fourth += x * x * x * x;
+    }
+  // Standard errors: 1/sqrt(n) for the mean, sqrt(2/n) for the variance,
+  // sqrt(96/n) for the fourth moment (3 for a normal).
+  EXPECT_LT(std::abs(sum / n), 4 / std::sqrt(n));
+  EXPECT_LT(std::abs(square / n - 1), 4 * std::sqrt(2.0 / n));
+  EXPECT_LT(std::abs(fourth / n - 3), 4 * std::sqrt(96.0 / n));
+}
+
+TEST(Thermal, PhaseFluctuationsInOnePhaseFollowEquipartition)
+{
+  constexpr int         n = 16;
+  Testing::FixedSurface setup(n);
+  setup.options.scheme = "linearized";
+  InitialPhaseOptions uniform;
+  uniform.type          = "uniform";
+  uniform.uniform_value = -1;
+  setup.set_phase(uniform);
+  const double mass = setup.mass();
+
+  const double kT = 1e-4, tau = 2.5e-4, sigma = 1, xi = 0.1, f2 = 9.0 / 4;
+  // Nodal positions of the scalar dofs, for the Fourier amplitudes (the patch
+  // area is 1, n^2 vertices).
+  const auto                   &space = setup.surface.scalar_space();
+  std::vector<dealii::Point<3>> where(space.dof_handler().n_dofs());
+  for (const auto &cell : space.dof_handler().active_cell_iterators())
+    for (const unsigned int v : cell->vertex_indices())
+      where[cell->vertex_dof_index(v, 0)] = cell->vertex(v);
+  // Real amplitudes cos and sin of the modes k = (1,0), (0,1) (|q| = 2 pi) and
+  // (1,1), (1,-1).
+  const std::vector<std::pair<int, int>> modes      = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+  const auto                             amplitudes = [&]() {
+    std::vector<double> a(2 * modes.size(), 0.0);
+    for (std::size_t i = 0; i < where.size(); ++i)
+      if (!space.constraints().is_constrained(i)) // the periodic copies are counted once
+        for (std::size_t m = 0; m < modes.size(); ++m)
+          {
+            const double arg = 2 * M_PI * (modes[m].first * where[i][0] + modes[m].second * where[i][1]);
+            a[2 * m] += setup.phi[i] * std::cos(arg) / (n * n);
+            a[2 * m + 1] += setup.phi[i] * std::sin(arg) / (n * n);
+          }
+    return a;
+  };
+
+  const unsigned int               warm_up = 400, steps = 8000, batches = 20;
+  std::vector<std::vector<double>> batch(2, std::vector<double>(batches, 0.0)); // per |q| group
+  for (unsigned int step = 0; step < warm_up + steps; ++step)
+    {
+      setup.step(tau, ThermalNoise{kT, 7, step});
+      if (step < warm_up)
+        continue;
+      const auto   a         = amplitudes();
+      const double per_batch = static_cast<double>(steps / batches);
+      // |phi_q|^2 of a complex mode is cos^2 + sin^2 of its real amplitudes.
+      batch[0][(step - warm_up) * batches / steps] +=
+          (a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3]) / 2 / per_batch;
+      batch[1][(step - warm_up) * batches / steps] +=
+          (a[4] * a[4] + a[5] * a[5] + a[6] * a[6] + a[7] * a[7]) / 2 / per_batch;
+    }
+  EXPECT_LT(std::abs(setup.mass() - mass), 1e-12);
+
+  for (unsigned int group = 0; group < 2; ++group)
+    {
+      const double q2       = std::pow(2 * M_PI, 2) * (group == 0 ? 1 : 2);
+      const double lambda   = setup.material.phase_mobility * sigma * q2 * (xi * xi * q2 + f2);
+      const double expected = kT / (sigma * (xi * xi * q2 + f2)) / (1 + lambda * tau / 2);
+      const double mean     = std::accumulate(batch[group].begin(), batch[group].end(), 0.0) / batches;
+      double       spread   = 0;
+      for (const double b : batch[group])
+        spread += (b - mean) * (b - mean) / (batches - 1);
+      const double error = std::sqrt(spread / batches) / expected;
+      std::cout << "|q|^2 = " << q2 << ": <|phi_q|^2> = " << mean << ", expected " << expected << ", ratio "
+                << mean / expected << " +- " << error << std::endl;
+      EXPECT_LT(error, 0.07); // resolves a 44 % change of the variance
+      EXPECT_LT(std::abs(mean / expected - 1), std::max(3 * error, 0.05));
+    }
+}
