@@ -3,14 +3,15 @@
 
   continuation.py follow <base.prm> <Section/Entry> <v1> <v2> ... --output DIR
                   [--start CHECKPOINT] [--classify outcome|protrusion:0.95|neck:0.4]
-                  [--plateau RATE] [--max-time T] [--set 'Section/Entry=value' ...] [--exe PATH]
+                  [--plateau RATE] [--plateau-time T0] [--max-time T] [--set 'Section/Entry=value' ...] [--exe PATH]
   continuation.py compare DIR_A DIR_B
 
 `follow` relaxes at v1 (from CHECKPOINT, or from the input's initial state), then at each
 next value resumes from the previous equilibrium's checkpoint with the changed parameter
 (recorded as a change on resume in the run's run_info.json) and relaxes again. A run stops
 on the plateau criterion `Time stepping/Equilibrium rate` = RATE (relative energy change
-per unit time; default 1e-3) or after T more time units (default 10; such a point is
+per unit time; default 1e-3), held for T0 time units (`Time stepping/Equilibrium time`,
+default 0: one step), or after T more time units (default 10; such a point is
 marked "not at plateau"). The branch ends at the first state of another class: the bud
 reopens, or the domain buds. Each value's run is DIR/<value>/; DIR/branch.json holds the
 points, the class, and the turning-point bracket [last value on the branch, first off it].
@@ -65,7 +66,8 @@ def follow(args):
         directory = os.path.join(args.output, f'{value:g}')
         command = [exe, '--quiet', '--overwrite', *sum((['--set', s] for s in args.set), []),
                    '--set', f'{args.parameter}={value:g}', '--set', f'Output/Directory={directory}',
-                   '--set', 'Checkpoint/Interval=1000000', '--set', f'Time stepping/Equilibrium rate={args.plateau:g}']
+                   '--set', 'Checkpoint/Interval=1000000', '--set', f'Time stepping/Equilibrium rate={args.plateau:g}',
+                   '--set', f'Time stepping/Equilibrium time={args.plateau_time:g}']
         start = 0.0
         if checkpoint:
             start = checkpoint_time(checkpoint)
@@ -93,7 +95,8 @@ def follow(args):
     except RunFailed as e:
         error = str(e)
     record = {'parameter': args.parameter, 'base': args.base, 'values': args.values, 'set': args.set,
-              'classify': args.classify, 'plateau': args.plateau, 'start': args.start, **branch,
+              'classify': args.classify, 'plateau': args.plateau,
+              'plateau_time': args.plateau_time, 'start': args.start, **branch,
               'turning_point': turning_point(branch) if error is None else None, 'error': error}
     write_atomically(os.path.join(args.output, 'branch.json'), json.dumps(record, indent=1) + '\n')
     if error:
@@ -134,6 +137,8 @@ def main():
     f.add_argument('--start', default=None, help='checkpoint to start from (default: the initial state)')
     f.add_argument('--classify', default='outcome')
     f.add_argument('--plateau', type=float, default=1e-3)
+    f.add_argument('--plateau-time', type=float, default=0.0,
+                   help='how long the rate must stay below --plateau (Time stepping/Equilibrium time)')
     f.add_argument('--max-time', type=float, default=10.0)
     f.add_argument('--set', action='append', default=[])
     f.add_argument('--exe', default=os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'build',
@@ -154,6 +159,8 @@ def main():
         parser.error(f'--start {args.start} does not exist')
     if not (args.plateau > 0 and args.max_time > 0):
         parser.error('--plateau and --max-time must be positive')
+    if not 0 <= args.plateau_time < args.max_time:
+        parser.error('--plateau-time must be at least 0 and less than --max-time')
     try:
         return follow(args)
     except KeyboardInterrupt:

@@ -119,6 +119,10 @@ namespace Membrane
                         "Largest accepted relative rise of the free energy in one step (round-off allowance).");
       prm.declare_entry("Equilibrium rate", "0", Patterns::Double(0, max_double),
                         "Stop at equilibrium when |F^{m+1} - F^m| / (tau |F^m|) falls below this (1/time; 0: never).");
+      prm.declare_entry("Equilibrium time", "0", Patterns::Double(0, max_double),
+                        "The equilibrium stop needs the energy rate below Equilibrium rate in every accepted step "
+                        "for at least this much time (0: one step suffices). After a parameter change on resume, "
+                        "or near a turning point, the first steps can be slow before the state starts to move.");
       prm.declare_entry("Minimum cell quality", "0.1", Patterns::Double(-1, 1),
                         "Smallest accepted sine of a cell's corner angle (1: rectangle; 0: degenerate).");
       prm.declare_entry("Maximum increment", "1", Patterns::Double(0, max_double),
@@ -328,6 +332,7 @@ namespace Membrane
     accuracy_tolerance = prm.get_double("Accuracy tolerance");
     energy_tolerance = prm.get_double("Energy tolerance");
     equilibrium_rate = prm.get_double("Equilibrium rate");
+    equilibrium_time = prm.get_double("Equilibrium time");
     min_cell_quality = prm.get_double("Minimum cell quality");
     max_increment_cells = prm.get_double("Maximum increment");
     AssertThrow(min_time_step <= time_step && time_step <= max_time_step,

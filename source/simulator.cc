@@ -405,11 +405,20 @@ namespace Membrane
       return stop("pinch-off approach: neck radius " + format(bud.neck_radius) + " < " +
                     format(parameters.pinch_off_radius),
                   false);
-    if (parameters.equilibrium_rate > 0 &&
-        change / trial < parameters.equilibrium_rate)
-      return stop("equilibrium: relative energy rate " + format(change / trial) + " < " +
-                    format(parameters.equilibrium_rate),
-                  false);
+    // The rate must stay below the threshold for Equilibrium time (from the step whose start it
+    // first held at): one slow step after a change of a parameter is not yet a plateau.
+    if (parameters.equilibrium_rate > 0 && change / trial < parameters.equilibrium_rate)
+      {
+        if (plateau_since < 0)
+          plateau_since = time - trial;
+        if (time - plateau_since >= parameters.equilibrium_time * (1 - 1e-12))
+          return stop("equilibrium: relative energy rate " + format(change / trial) + " < " +
+                        format(parameters.equilibrium_rate) +
+                        (parameters.equilibrium_time > 0 ? " for " + format(time - plateau_since) : std::string()),
+                      false);
+      }
+    else
+      plateau_since = -1;
     return true;
   }
 

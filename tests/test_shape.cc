@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <map>
+#include <sstream>
 
 namespace
 {
@@ -184,9 +185,40 @@ subsection Output
   const auto energy = column(simulator.statistics(), "energy");
   for (std::size_t i = 1; i < energy.size(); ++i)
     EXPECT_LE(energy[i], energy[i - 1] * (1 + 1e-10)) << "step " << i;
-  std::cout << energy.size() - 1 << " steps to t = " << simulator.statistics().last("time") << ", energy "
-            << energy.front() << " -> " << std::setprecision(12) << energy.back() << std::endl;
+  std::ostringstream summary;
+  summary << energy.size() - 1 << " steps to t = " << simulator.statistics().last("time") << ", energy "
+          << energy.front() << " -> " << std::setprecision(12) << energy.back();
+  std::cout << summary.str() << std::endl;
   EXPECT_LT(largest_relative_steepness(simulator.current_surface(), simulator.order_parameter(), 0.1), 1e-12);
+
+  // With Equilibrium time = 5 the rate must stay below 1e-9 for 5 time units: the run goes on
+  // past the first slow step, to a later stop whose window spans at least 5.
+  Parameters held = make_parameters(homogeneous + R"(
+subsection Mesh
+  set Cells per side = 16
+end
+subsection Initial shape
+  set Shape = cosine modes
+  set Cosine modes = 0.06 1 1; 0.06 1 -1; 0.01 2 1
+end
+subsection Shape
+  set Grid control rate = 10
+end
+subsection Time stepping
+  set End time = 100
+  set Time step = 1e-4
+  set Maximum time step = 1
+  set Equilibrium rate = 1e-9
+  set Equilibrium time = 5
+end
+subsection Output
+  set Directory = )" + dir + "_held\nend\n");
+  Simulator       held_simulator(held, RunOptions{true, "", "test"});
+  const RunResult held_result = held_simulator.run();
+  EXPECT_EQ(held_result.stop_reason.rfind("equilibrium", 0), 0u) << held_result.stop_reason;
+  const double window = std::stod(held_result.stop_reason.substr(held_result.stop_reason.rfind(" for ") + 5));
+  EXPECT_GE(window, 5 * (1 - 1e-12));
+  EXPECT_GE(held_simulator.statistics().last("time"), simulator.statistics().last("time") + 4);
 }
 
 // Equal-order Q1 for (W, gamma): without stabilization the surface pressure of a

@@ -43,6 +43,7 @@ namespace Membrane
     bool         adaptive = true;
     double       min_time_step = 1e-9, max_time_step = 1e-2, growth_factor = 1.25, accuracy_tolerance = 0;
     double       energy_tolerance = 1e-10, equilibrium_rate = 0, min_cell_quality = 0.1;
+    double       equilibrium_time = 0; // how long the rate must stay below equilibrium_rate
     double       max_increment_cells = 1; // largest vertex move in one step, in cell sizes (0: no bound)
     // Shape
     bool         evolve_shape = true;

@@ -237,6 +237,7 @@ namespace Membrane
     /// Mesh adaptation: the level of the input mesh, the number of adaptations and the
     /// sum of their energy changes (not steps of the gradient flow).
     unsigned int base_level = 0, adaptations = 0;
+    double       plateau_since = -1; ///< time since which the energy rate is below Equilibrium rate (-1: not)
     double       adaptation_energy_jump = 0;
     bool         memory_warning_given   = false; ///< refinement_fits() warns once per run
     bool   grid_move_skipped = false; ///< in the current trial step
