@@ -156,8 +156,9 @@ subsection Output
 // The phase-force hint of a stalled run needs an interface: with phi uniform there is none.
 TEST(Shape, SinglePhaseRelaxationReachesEquilibriumWithGridControl)
 {
-  const std::string dir = std::filesystem::temp_directory_path() / "membrane_single_phase_equilibrium";
-  const Parameters  parameters = make_parameters(homogeneous + R"(
+  const std::string dir      = std::filesystem::temp_directory_path() / "membrane_single_phase_equilibrium";
+  const auto        relaxing = [&](const double equilibrium_time, const std::string &directory) {
+    return make_parameters(homogeneous + R"(
 subsection Mesh
   set Cells per side = 16
 end
@@ -174,10 +175,13 @@ subsection Time stepping
   set Time step = 1e-4
   set Maximum time step = 1
   set Equilibrium rate = 1e-9
+  set Equilibrium time = )" + std::to_string(equilibrium_time) + R"(
 end
 subsection Output
-  set Directory = )" + dir + "\nend\n");
-  Simulator       simulator(parameters, RunOptions{true, "", "test"});
+  set Directory = )" + directory + "\nend\n");
+  };
+  const Parameters parameters = relaxing(0, dir); // the Simulator keeps a reference
+  Simulator        simulator(parameters, RunOptions{true, "", "test"});
   const RunResult result = simulator.run();
   EXPECT_FALSE(result.failed) << result.stop_reason;
   EXPECT_EQ(result.stop_reason.rfind("equilibrium", 0), 0u) << result.stop_reason;
@@ -193,27 +197,8 @@ subsection Output
 
   // With Equilibrium time = 5 the rate must stay below 1e-9 for 5 time units: the run goes on
   // past the first slow step, to a later stop whose window spans at least 5.
-  Parameters held = make_parameters(homogeneous + R"(
-subsection Mesh
-  set Cells per side = 16
-end
-subsection Initial shape
-  set Shape = cosine modes
-  set Cosine modes = 0.06 1 1; 0.06 1 -1; 0.01 2 1
-end
-subsection Shape
-  set Grid control rate = 10
-end
-subsection Time stepping
-  set End time = 100
-  set Time step = 1e-4
-  set Maximum time step = 1
-  set Equilibrium rate = 1e-9
-  set Equilibrium time = 5
-end
-subsection Output
-  set Directory = )" + dir + "_held\nend\n");
-  Simulator       held_simulator(held, RunOptions{true, "", "test"});
+  const Parameters held = relaxing(5, dir + "_held");
+  Simulator        held_simulator(held, RunOptions{true, "", "test"});
   const RunResult held_result = held_simulator.run();
   EXPECT_EQ(held_result.stop_reason.rfind("equilibrium", 0), 0u) << held_result.stop_reason;
   const double window = std::stod(held_result.stop_reason.substr(held_result.stop_reason.rfind(" for ") + 5));

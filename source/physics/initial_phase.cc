@@ -1,3 +1,4 @@
+#include <membrane/physics/counter_hash.h>
 #include <membrane/physics/initial_phase.h>
 #include <membrane/surface/geometry.h>
 #include <membrane/surface/initial_shapes.h>
@@ -14,14 +15,6 @@ namespace Membrane
 
   namespace
   {
-    std::uint64_t splitmix64(std::uint64_t x)
-    {
-      x += 0x9e3779b97f4a7c15ULL;
-      x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-      return x ^ (x >> 31);
-    }
-
     /// Set each owned vertex value from a function of the reference vertex.
     template <typename Value>
     Vector vertex_field(const Surface &surface, const Value &value)

@@ -1,3 +1,4 @@
+#include <membrane/physics/counter_hash.h>
 #include <membrane/physics/thermal_noise.h>
 
 #include <cmath>
@@ -7,15 +8,6 @@ namespace Membrane
 {
   namespace
   {
-    /// The splitmix64 finalizer: a bijection of 64-bit words with full avalanche.
-    std::uint64_t mix(std::uint64_t x)
-    {
-      x += 0x9e3779b97f4a7c15ULL;
-      x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-      x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-      return x ^ (x >> 31);
-    }
-
     /// A uniform variate in (0, 1] from the 53 high bits of a word.
     double uniform(const std::uint64_t word)
     {
@@ -48,8 +40,8 @@ namespace Membrane
   double standard_normal(const std::uint64_t seed, const std::uint64_t step, const std::uint64_t id,
                          const unsigned int component)
   {
-    const std::uint64_t key = mix(mix(mix(mix(seed) ^ step) ^ id) ^ component);
-    const double        u1 = uniform(mix(key)), u2 = uniform(mix(key ^ 0x5851f42d4c957f2dULL));
+    const std::uint64_t key = splitmix64(splitmix64(splitmix64(splitmix64(seed) ^ step) ^ id) ^ component);
+    const double        u1 = uniform(splitmix64(key)), u2 = uniform(splitmix64(key ^ 0x5851f42d4c957f2dULL));
     return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
   }
 
@@ -58,6 +50,6 @@ namespace Membrane
     std::uint64_t hash = 0xcbf29ce484222325ULL; // FNV-1a over the id's text, then mixed
     for (const char c : id.to_string())
       hash = (hash ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
-    return mix(hash);
+    return splitmix64(hash);
   }
 } // namespace Membrane
