@@ -191,6 +191,10 @@ namespace Membrane
     const AdaptivityOptions &adaptivity = parameters.adaptivity;
     const double             xi         = parameters.material.transition_length;
     const double             interface  = interface_cell_size(surface, phi, xi, adaptivity, base_level);
+    // A phi that is uniform stays uniform in the deterministic flow: no interface will need the mesh.
+    const auto [phi_min, phi_max] = global_range(phi);
+    if (interface == 0 && !parameters.thermal.active() && phi_max == phi_min)
+      return;
     const double h = interface > 0 ? interface : surface.max_cell_diameter() / std::sqrt(2.0);
     if (h <= 1.25 * xi)
       return;
