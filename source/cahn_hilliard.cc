@@ -31,8 +31,9 @@ namespace Membrane
     matrix = 0;
     rhs    = 0;
     const QGauss<dim>       quadrature(2);
-    const UpdateFlags       flags = update_values | update_gradients | update_JxW_values | update_jacobians |
-                              update_normal_vectors;
+    // The tangent frame of the noise needs the Jacobian and the normal; only then are they computed.
+    const UpdateFlags flags = update_values | update_gradients | update_JxW_values |
+                              (noise.active() ? update_jacobians | update_normal_vectors : update_default);
     FEValues<dim, spacedim> fe_values(surface.mapping(), space.fe(), quadrature, flags);
     FEValues<dim, spacedim> field_values(surface.mapping(), surface.scalar_space().fe(), quadrature, update_values);
     const FEValuesExtractors::Scalar phi_part(0), potential_part(1);

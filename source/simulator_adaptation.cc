@@ -26,10 +26,7 @@ namespace Membrane
     }
 
     /// Place the vertices created by refining the cells in `split` on a smooth surface
-    /// instead of on the bilinear one: each new edge midpoint at the midpoint of the cubic
-    /// Hermite curve between the edge's ends, whose tangents are the edge projected on the
-    /// vertex tangent planes, p(1/2) = (A + B)/2 + (T_A - T_B)/8; each cell centre by the
-    /// bilinear (Coons) blend of the corrected midpoints. On a bilinear surface the kinks
+    /// instead of on the bilinear one (refined_vertices). On a bilinear surface the kinks
     /// along the old edges would show up in the weak mean curvature of the finer mesh as
     /// spurious bending energy.
     void place_new_vertices(const FieldSpace &vectors, const std::set<CellKey> &split, const Vector &normal_ghosted,
@@ -64,23 +61,16 @@ namespace Membrane
                   displacement_owned[dof] = x[d] - parent->child(c)->vertex(v)[d];
               }
           };
-          // Parent corner i is vertex i of child i.
-          const auto midpoint = [&](const unsigned int a, const unsigned int b) {
-            return hermite_midpoint(position(a, a), position(b, b), normal(a, a), normal(b, b));
-          };
-          // Edge midpoints: 0-1 is vertex 1 of child 0, 0-2 vertex 2 of child 0,
-          // 1-3 vertex 1 of child 3, 2-3 vertex 2 of child 3; the centre is vertex 3 of child 0.
-          const Point<spacedim> m01 = midpoint(0, 1), m02 = midpoint(0, 2), m13 = midpoint(1, 3),
-                                m23 = midpoint(2, 3);
-          set(0, 1, m01);
-          set(0, 2, m02);
-          set(3, 1, m13);
-          set(3, 2, m23);
-          Point<spacedim> centre;
-          for (unsigned int i = 0; i < 4; ++i)
-            centre -= 0.25 * position(i, i);
-          centre += 0.5 * (m01 + m02 + m13 + m23);
-          set(0, 3, centre);
+          // Parent corner i is vertex i of child i. Edge midpoints: 0-1 is vertex 1 of child 0,
+          // 0-2 vertex 2 of child 0, 1-3 vertex 1 of child 3, 2-3 vertex 2 of child 3; the centre
+          // is vertex 3 of child 0.
+          const auto placed = refined_vertices({{position(0, 0), position(1, 1), position(2, 2), position(3, 3)}},
+                                               {{normal(0, 0), normal(1, 1), normal(2, 2), normal(3, 3)}});
+          set(0, 1, placed[0]);
+          set(0, 2, placed[1]);
+          set(3, 1, placed[2]);
+          set(3, 2, placed[3]);
+          set(0, 3, placed[4]);
         }
       displacement_owned.compress(VectorOperation::insert);
       vectors.constraints().distribute(displacement_owned);

@@ -163,18 +163,27 @@ namespace Membrane
     return Utilities::MPI::logical_or(leaves, triangulation.get_communicator());
   }
 
-  Point<spacedim> hermite_midpoint(const Point<spacedim> &A, const Point<spacedim> &B, const Tensor<1, spacedim> &normal_A,
-                                   const Tensor<1, spacedim> &normal_B)
+  std::array<Point<spacedim>, 5> refined_vertices(const std::array<Point<spacedim>, 4>     &corner,
+                                                  const std::array<Tensor<1, spacedim>, 4> &normal)
   {
-    const Tensor<1, spacedim> chord = B - A;
-    return Point<spacedim>(0.5 * (A + B) + ((normal_B * chord) * normal_B - (normal_A * chord) * normal_A) / 8);
+    const auto midpoint = [&](const unsigned int a, const unsigned int b) {
+      const Tensor<1, spacedim> chord = corner[b] - corner[a];
+      return Point<spacedim>(0.5 * (corner[a] + corner[b]) +
+                             ((normal[b] * chord) * normal[b] - (normal[a] * chord) * normal[a]) / 8);
+    };
+    const Point<spacedim> m01 = midpoint(0, 1), m02 = midpoint(0, 2), m13 = midpoint(1, 3), m23 = midpoint(2, 3);
+    Point<spacedim>       centre;
+    for (unsigned int i = 0; i < 4; ++i)
+      centre -= 0.25 * corner[i];
+    centre += 0.5 * (m01 + m02 + m13 + m23);
+    return {{m01, m02, m13, m23, centre}};
   }
 
   namespace
   {
     /// The geometric interpolation error that coarsening the children of `parent` (all active)
     /// would drop: the largest distance of the five inner vertices from where refining the
-    /// parent again would place them (hermite_midpoint), relative to the parent's size.
+    /// parent again would place them (refined_vertices), relative to the parent's size.
     double coarsening_error(const Surface &surface, const typename Triangulation::cell_iterator &parent,
                             const LocalValues &normals)
     {
@@ -191,17 +200,13 @@ namespace Membrane
           n[d] = normals[cell->vertex_dof_index(v, d)];
         return n;
       };
-      const Point<spacedim> corner[4] = {position(0, 0), position(1, 1), position(2, 2), position(3, 3)};
-      const Point<spacedim> m01 = hermite_midpoint(corner[0], corner[1], normal(0, 0), normal(1, 1)),
-                            m02 = hermite_midpoint(corner[0], corner[2], normal(0, 0), normal(2, 2)),
-                            m13 = hermite_midpoint(corner[1], corner[3], normal(1, 1), normal(3, 3)),
-                            m23 = hermite_midpoint(corner[2], corner[3], normal(2, 2), normal(3, 3));
-      const Point<spacedim> centre(0.5 * (m01 + m02 + m13 + m23) -
-                                   0.25 * (corner[0] + corner[1] + corner[2] + corner[3]));
+      const std::array<Point<spacedim>, 4> corner = {{position(0, 0), position(1, 1), position(2, 2), position(3, 3)}};
+      const auto predicted = refined_vertices(corner, {{normal(0, 0), normal(1, 1), normal(2, 2), normal(3, 3)}});
       const double size = std::max({corner[0].distance(corner[1]), corner[0].distance(corner[2]),
                                     corner[1].distance(corner[3]), corner[2].distance(corner[3])});
-      return std::max({position(0, 1).distance(m01), position(0, 2).distance(m02), position(3, 1).distance(m13),
-                       position(3, 2).distance(m23), position(0, 3).distance(centre)}) /
+      return std::max({position(0, 1).distance(predicted[0]), position(0, 2).distance(predicted[1]),
+                       position(3, 1).distance(predicted[2]), position(3, 2).distance(predicted[3]),
+                       position(0, 3).distance(predicted[4])}) /
              size;
     }
 
@@ -305,7 +310,7 @@ namespace Membrane
     const LocalValues in_band_values(band_ghosted), H(geometry.mean_curvature), K(geometry.gauss_curvature);
 
     const double target = xi / options.interface_cells_per_xi;
-    unsigned int refine = 0, coarsen = 0;
+    unsigned int refine = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
@@ -327,13 +332,11 @@ namespace Membrane
               ++refine;
             }
           else if (!refine_here && coarse_enough && level > 0)
-            {
-              cell->set_coarsen_flag();
-              ++coarsen;
-            }
+            cell->set_coarsen_flag();
         }
+    // Counted after the bound: the flags that remain.
     limit_coarsening(triangulation, surface, geometry, options.coarsening_tolerance);
-    coarsen = 0;
+    unsigned int coarsen = 0;
     for (const auto &cell : triangulation.active_cell_iterators())
       coarsen += cell->is_locally_owned() && cell->coarsen_flag_set();
     const MPI_Comm comm = triangulation.get_communicator();

@@ -20,6 +20,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <array>
+
 namespace Membrane
 {
   struct AdaptivityOptions
@@ -56,12 +58,13 @@ namespace Membrane
   double interface_cell_size(const Surface &surface, const Vector &phi_ghosted, double transition_length,
                              const AdaptivityOptions &options, unsigned int base_level);
 
-  /// The midpoint of the cubic Hermite curve between the points A and B whose tangents are the
-  /// chord B - A projected on the tangent planes of the unit normals nu_A and nu_B:
-  /// (A + B)/2 + (T_A - T_B)/8. Where new vertices of a refined edge go (Smooth new vertices).
-  dealii::Point<spacedim> hermite_midpoint(const dealii::Point<spacedim> &A, const dealii::Point<spacedim> &B,
-                                           const dealii::Tensor<1, spacedim> &normal_A,
-                                           const dealii::Tensor<1, spacedim> &normal_B);
+  /// Where refining a cell with these corners (deal.II order) and unit vertex normals puts its five
+  /// new vertices on a smooth surface (Smooth new vertices): the edge midpoints 0-1, 0-2, 1-3, 2-3
+  /// at the midpoints of the cubic Hermite curves whose end tangents are the edge projected on the
+  /// corners' tangent planes, (A + B)/2 + (T_A - T_B)/8, and the centre by the bilinear (Coons)
+  /// blend of these midpoints.
+  std::array<dealii::Point<spacedim>, 5> refined_vertices(const std::array<dealii::Point<spacedim>, 4> &corner,
+                                                          const std::array<dealii::Tensor<1, spacedim>, 4> &normal);
 
   /// Set refinement and coarsening flags on the locally owned cells of `triangulation`
   /// (the surface's) by the indicators above; `base_level` is the level of the input
