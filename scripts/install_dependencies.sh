@@ -11,7 +11,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   python3-numpy python3-matplotlib python3-vtk9   # plots, pictures, VTU read-back test
   xvfb libgl1-mesa-dri      # off-screen X server and software OpenGL for VTK's renderer (no display needed)
-  ffmpeg                    # movies (scripts/make_movie.py)
+  ffmpeg                    # movies (python3 -m membrane_flow movie)
   python3-dev pybind11-dev  # the Python module membrane_flow (docs/python.md)
 )
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Makes `import membrane_flow` work for the Debian Python (/usr/bin/python3): writes
+# Makes `import membrane_flow` and `python3 -m membrane_flow <command>` work for the Debian
+# Python (/usr/bin/python3): writes
 # membrane_flow.pth, naming this checkout's build/python, into its site-packages
 # directory (/usr/local/lib/python3.X/dist-packages). Run by setup.sh; run it again
 # to point the import at another checkout. Without write access it prints the
@@ -13,7 +14,7 @@ if [ ! -f "$package/membrane_flow/__init__.py" ]; then
 fi
 [ -f "$package"/membrane_flow/_core*.so ] ||
   echo "[python] warning: the compiled module is missing (pybind11-dev and python3-dev at configure time?);" \
-       "only the loader of finished runs will work" >&2
+       "only the pure-Python part (the reader of runs, the launcher, python3 -m membrane_flow) will work" >&2
 site=$(/usr/bin/python3 -c 'import site; print(site.getsitepackages()[0])')
 if mkdir -p "$site" 2>/dev/null && echo "$package" > "$site/membrane_flow.pth" 2>/dev/null; then
   echo "[python] /usr/bin/python3 imports membrane_flow from $package ($site/membrane_flow.pth)"

@@ -16,5 +16,5 @@ done
   experiments/7.4D-small-domain.prm | tail -n 3
 "$exe" --quiet --overwrite --set "Material/Line tension=10" --set "Output/Directory=results/vesicle-small-domain-sigma10" \
   experiments/vesicle-small-domain.prm | tail -n 3
-/usr/bin/python3 scripts/make_experiment_docs.py results docs
-/usr/bin/python3 scripts/make_gallery.py results docs
+/usr/bin/python3 -m membrane_flow experiment-docs results docs
+/usr/bin/python3 -m membrane_flow gallery results docs

@@ -14,4 +14,4 @@ fi
 ./build/membrane-flow --overwrite experiments/default.prm
 echo
 echo "Open results/default/surface.pvd in ParaView; statistics in results/default/statistics.txt."
-echo "Picture: scripts/render_surface.py results/default/surface.pvd default.png (docs/visualization.md)."
+echo "Picture: /usr/bin/python3 -m membrane_flow render results/default/surface.pvd default.png (docs/visualization.md)."

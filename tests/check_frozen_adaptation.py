@@ -16,8 +16,7 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'scripts'))
-from membrane_workflow.statistics import load_statistics  # noqa: E402
+from membrane_flow.run import load_statistics  # noqa: E402 (PYTHONPATH: the build's python/)
 
 parser = argparse.ArgumentParser()
 parser.add_argument("dir")

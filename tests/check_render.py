@@ -1,9 +1,10 @@
 #!/usr/bin/python3
-"""Check the VTK surface renderer (scripts/render_surface.py) and the movie script
-(scripts/make_movie.py) on synthetic surfaces whose pictures are known, by pixel colours.
+"""Check the VTK surface renderer (python3 -m membrane_flow render, membrane_flow/pictures/render.py)
+and the movie command (python3 -m membrane_flow movie) on synthetic surfaces whose pictures are
+known, by pixel colours. membrane_flow must be importable (PYTHONPATH=<build>/python).
 
-Usage: check_render.py <scripts dir>                       synthetic checks (files in ./render_check)
-       check_render.py <scripts dir> <surface.pvd> <out.png>  a run's last snapshot: size, both phases
+Usage: check_render.py                        synthetic checks (files in ./render_check)
+       check_render.py <surface.pvd> <out.png>  a run's last snapshot: size, both phases
 
 Synthetic checks, each on VTU files written here in both layouts the simulator may write
 (every vertex stored once per cell with a `displacement` field, as deal.II writes them, and
@@ -23,7 +24,7 @@ shared vertices without it):
               (interpolated at points, not one colour per cell) and without jumps;
   tile, time  --tile 2x2 from the command line shows red, blue, red, blue across the picture
               at the requested size, with a time stamp (dark pixels top left) unless --no-time;
-  movie       make_movie.py encodes one H.264 frame per snapshot at the requested size."""
+  movie       the movie command encodes one H.264 frame per snapshot at the requested size."""
 import json
 import os
 import subprocess
@@ -35,9 +36,7 @@ from vtkmodules.vtkCommonCore import vtkFloatArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import VTK_QUAD, vtkCellArray, vtkUnstructuredGrid
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
 
-scripts = os.path.abspath(sys.argv[1])
-sys.path.insert(0, scripts)
-import render_surface as rs  # noqa: E402
+import membrane_flow.pictures.render as rs  # noqa: E402
 
 python = sys.executable
 failures = []
@@ -128,7 +127,7 @@ def is_background(p):
 def run_on(pvd, png):
     """The older check on a simulator run: requested size, both phases visible."""
     import matplotlib.image as mpimg
-    subprocess.run([python, os.path.join(scripts, 'render_surface.py'), pvd, png, '--size', '640x480'], check=True)
+    subprocess.run([python, '-m', 'membrane_flow', 'render', pvd, png, '--size', '640x480'], check=True)
     image = mpimg.imread(png)[:, :, :3] * 255
     check(image.shape[:2] == (480, 640), f'picture size {image.shape[1]}x{image.shape[0]} is 640x480')
     surface = image[:, :int(0.8 * 640)]  # the colour bar holds both colours whatever the surface shows
@@ -235,7 +234,7 @@ def synthetic():
 
     # command line: --tile, --size, a PVD and its last snapshot, the time stamp
     write_pvd('halves.pvd', [(0.0, 'halves-shared.vtu'), (0.25, 'halves-cells.vtu')])
-    subprocess.run([python, os.path.join(scripts, 'render_surface.py'), 'halves.pvd', 'tiled.png', '--size', '500x300',
+    subprocess.run([python, '-m', 'membrane_flow', 'render', 'halves.pvd', 'tiled.png', '--size', '500x300',
                     '--tile', '2x2', '--view', 'top', '--projection', 'parallel'], check=True)
     import matplotlib.image as mpimg
     image = mpimg.imread('tiled.png')[:, :, :3] * 255
@@ -249,7 +248,7 @@ def synthetic():
 
     # movie: one frame per snapshot
     write_pvd('series.pvd', [(0.0, 'cosine-cells.vtu'), (0.25, 'halves-cells.vtu'), (0.5, 'wave-cells.vtu')])
-    subprocess.run([python, os.path.join(scripts, 'make_movie.py'), 'series.pvd', 'series.mp4', '--size', '321x240',
+    subprocess.run([python, '-m', 'membrane_flow', 'movie', 'series.pvd', 'series.mp4', '--size', '321x240',
                     '--fps', '4', '--hold', '0'], check=True)
     probe = subprocess.run(['ffprobe', '-v', 'error', '-count_frames', '-select_streams', 'v:0', '-show_entries',
                             'stream=codec_name,width,height,nb_read_frames', '-of', 'json', 'series.mp4'],
@@ -261,8 +260,8 @@ def synthetic():
           '(expected h264, 3 frames, 322x240: widths are made even)')
 
 
-if len(sys.argv) == 4:
-    run_on(sys.argv[2], sys.argv[3])
+if len(sys.argv) == 3:
+    run_on(sys.argv[1], sys.argv[2])
 else:
     synthetic()
 if failures:

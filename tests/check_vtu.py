@@ -14,8 +14,7 @@ import numpy as np
 import vtk
 from vtk.util.numpy_support import vtk_to_numpy
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'scripts'))
-from membrane_workflow.statistics import load_statistics  # noqa: E402
+from membrane_flow.run import load_statistics  # noqa: E402 (PYTHONPATH: the build's python/)
 
 directory = sys.argv[1]
 n_cells = int(sys.argv[2]) if sys.argv[2] != '-' else None

@@ -8,14 +8,11 @@ p = 0 (the crossing). Each relaxation is a gradient flow from the previous equil
 branch x > 0 followed upwards from p = -0.6 ends between the two values around +0.3849,
 the branch x < 0 followed downwards ends around -0.3849, both brackets no wider than the
 step, and the energies cross at p = 0 to 1e-3.
-Usage: test_continuation.py <scripts dir>"""
+Usage: test_continuation.py   (membrane_flow importable: PYTHONPATH=<build>/python)"""
 import math
-import os
-import sys
 import unittest
 
-sys.path.insert(0, sys.argv.pop(1) if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), '..', 'scripts'))
-from membrane_workflow.continuation import crossing, follow_branch, turning_point  # noqa: E402
+from membrane_flow.workflow.continuation import crossing, follow_branch, turning_point
 
 TURN = 2 / (3 * math.sqrt(3))
 

@@ -12,12 +12,13 @@ The commands run in the order of the documents (README first), as a reader would
 command may use the results of an earlier one; the stand-in adds --overwrite, so a command
 that runs into a directory an earlier one wrote is not refused. A shell variable set by an
 assignment line (R=...) holds for the rest of its block. The Python module is importable as
-after the setup command (PYTHONPATH points at the build). Not run: ./scripts/setup.sh and ./scripts/test.sh (they install packages and run this suite).
+after the setup command (PYTHONPATH points at the build), and its commands (python3 -m membrane_flow
+...) run the stand-in (MEMBRANE_FLOW_EXE). Not run: ./scripts/setup.sh and ./scripts/test.sh (they install packages and run this suite).
 A run with the same arguments, input file and working directory as an earlier command is not
 repeated while its results are unchanged (scripts/run_experiments.sh runs the experiments that
 docs/experiments.md lists one by one). bench_cahn_hilliard runs its 32 x 32 case only, briefly.
-benchmarks/scaling.py runs with --sizes 16,32 in place of its documented sizes, mesh_convergence.py
-with --levels 1 (and uniform meshes of 16, 24, 32), neck_study.py with --max-level 2 and the 4-rank sweep with 2 ranks (REDUCED).
+benchmarks/scaling.py runs with --sizes 16,32 in place of its documented sizes, mesh-convergence
+with --levels 1 (and uniform meshes of 16, 24, 32), neck-resolution with --max-level 2 and the 4-rank sweep with 2 ranks (REDUCED).
 Placeholders the docs use are created first: my_run.prm (experiments/default.prm),
 my_sweep.json (two line tensions of 7.3) and hosts (an MPI host file for this machine).
 Usage: test_docs_commands.py <source dir> <membrane-flow> <bench_cahn_hilliard> [<filter>]"""
@@ -36,17 +37,18 @@ only = sys.argv[4] if len(sys.argv) > 4 else None
 NOT_RUN = {"./scripts/setup.sh", "./scripts/test.sh"}
 # With 3 time steps every run of a bisection ends flat: it then reports that both ends
 # give the same outcome and exits with 1, as documented in docs/workflow.md.
-EXPECTED_CODES = {"scripts/critical_value.py": 1}
+MF = r"/usr/bin/python3 -m membrane_flow"
+EXPECTED_CODES = {f"{MF} critical": 1}
 MAX_STEPS = 3
 # The scaling benchmark's own meshes (up to 256 x 256: minutes and gigabytes per case even
 # for 3 steps) are replaced by the smallest sizes; its options and output are still run.
 REDUCED = [(re.compile(r"^(benchmarks/scaling\.py .*)--sizes \S+"), r"\1--sizes 16,32"),
            # The studies with the most cases run their smallest set: each case still runs, 3 steps.
-           (re.compile(r"^(scripts/mesh_convergence\.py .*)--levels 1,2,3"), r"\1--levels 1"),
-           (re.compile(r"^(scripts/mesh_convergence\.py .*)--uniform \S+"), r"\1--uniform 16,24,32"),
-           (re.compile(r"^scripts/neck_study\.py$"), "scripts/neck_study.py --max-level 2"),
+           (re.compile(rf"^({MF} mesh-convergence .*)--levels 1,2,3"), r"\1--levels 1"),
+           (re.compile(rf"^({MF} mesh-convergence .*)--uniform \S+"), r"\1--uniform 16,24,32"),
+           (re.compile(rf"^{MF} neck-resolution$"), f"{MF} neck-resolution --max-level 2"),
            # 4 ranks on a 2-core machine spend most of their time waiting for each other.
-           (re.compile(r"^(scripts/sweep\.py .*)--ranks 4"), r"\1--ranks 2")]
+           (re.compile(rf"^({MF} sweep .*)--ranks 4"), r"\1--ranks 2")]
 
 
 def commands(path):
@@ -140,7 +142,8 @@ work = make_copy()
 env = dict(os.environ, PATH=os.path.join(work, "build") + os.pathsep + os.environ["PATH"],
            OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
            OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1",
-           PYTHONPATH=os.path.join(os.path.dirname(exe), "python"))
+           PYTHONPATH=os.path.join(os.path.dirname(exe), "python"),
+           MEMBRANE_FLOW_EXE=os.path.join(work, "build", "membrane-flow"))
 failures, ran, seen = [], 0, set()
 for document in documents:
     for command in commands(document):

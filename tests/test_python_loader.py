@@ -62,10 +62,10 @@ check(abs(gamma.min() - stats['gamma_min'][-1]) <= 1e-6 * max(1, abs(gamma.min()
 first = run.snapshot(0.0)
 check(np.ptp(first['point_data']['phi']) > 0 and first['points'].shape[1] == 3, "the snapshot nearest t = 0")
 
-# The workflow scripts read the same loader.
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'scripts'))
-from membrane_workflow.statistics import load_statistics  # noqa: E402
-check(np.array_equal(load_statistics(directory)['energy'], stats['energy']), "membrane_workflow reads the same")
+# The rest of the package reads runs with the same reader (membrane_flow.run).
+from membrane_flow.workflow.budding_time import budding_time_of_run  # noqa: E402
+check(mf.run.load_statistics is mf.load_statistics, "membrane_flow.run is the reader of the package")
+budding_time_of_run(directory)  # reads statistics and summary through it
 
 for bad in [lambda: mf.load_run('/nonexistent/run'), lambda: mf.read_vtu('/nonexistent/surface.vtu')]:
     try:

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Fault tests of the sweep and critical-value scripts (scripts/sweep.py, scripts/critical_value.py):
+"""Fault tests of the sweep and critical-value commands (python3 -m membrane_flow sweep / critical):
 a reused output directory with a changed definition, parameter columns, booleans, entry names
 checked before any case (against the real simulator), malformed JSON, failed cases, SIGINT /
 SIGTERM / SIGKILL of a sweep, thread variables with several workers, and bisections that meet a
@@ -17,14 +17,14 @@ import time
 import unittest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPTS = os.path.join(HERE, '..', 'scripts')
-sys.path.insert(0, SCRIPTS)
-from membrane_workflow.critical import FailedRun, NoChange, bisect  # noqa: E402
+from membrane_flow.workflow.critical import FailedRun, NoChange, bisect  # noqa: E402 (PYTHONPATH: the build's python/)
 
 if len(sys.argv) != 3:
     sys.exit(__doc__)
 EXE, SMALL = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
 PYTHON = '/usr/bin/python3'
+SWEEP = [PYTHON, '-m', 'membrane_flow', 'sweep']
+CRITICAL = [PYTHON, '-m', 'membrane_flow', 'critical']
 
 # A stand-in for membrane-flow: the same command line, --print-parameters for a few entries,
 # behaviour chosen by its own 'Fake/...' entries. It records its argv, environment and pid (and
@@ -126,11 +126,11 @@ class Base(unittest.TestCase):
         return {'base': SMALL, 'output': output, 'set': set_ or {}, 'vary': vary}
 
     def sweep(self, sweep_file, *args, exe=None, env=None, timeout=120):
-        return subprocess.run([PYTHON, os.path.join(SCRIPTS, 'sweep.py'), sweep_file, '--exe', exe or self.fake,
+        return subprocess.run([*SWEEP, sweep_file, '--exe', exe or self.fake,
                                *args], capture_output=True, text=True, timeout=timeout, env=env)
 
     def critical(self, low, high, *args, output='crit', timeout=120):
-        return subprocess.run([PYTHON, os.path.join(SCRIPTS, 'critical_value.py'), SMALL, 'Material/Line tension',
+        return subprocess.run([*CRITICAL, SMALL, 'Material/Line tension',
                                str(low), str(high), '--output', os.path.join(self.root, output), '--exe', self.fake,
                                *args], capture_output=True, text=True, timeout=timeout)
 
@@ -174,7 +174,7 @@ class EntryNames(Base):
         self.assertIn("'Output/Directory' is set by the sweep", result.stderr)
 
     def test_critical_value_checks_its_names(self):
-        result = subprocess.run([PYTHON, os.path.join(SCRIPTS, 'critical_value.py'), SMALL, 'Material/Line tensoin',
+        result = subprocess.run([*CRITICAL, SMALL, 'Material/Line tensoin',
                                  '500', '1000', '--tolerance', '0.1', '--output', os.path.join(self.root, 'c'),
                                  '--set', 'Time stepping/End tme=0.001', '--exe', EXE], capture_output=True, text=True)
         self.assertExit(result, 1)
@@ -270,7 +270,7 @@ class MalformedInput(Base):
         path = self.write_sweep('{\n "base": "x.prm",\n "output": "out",\n}\n')
         result = self.sweep(path)
         self.assertExit(result, 1)
-        self.assertEqual(result.stderr.strip(), f"sweep.py: error: {path}:4:1: malformed JSON in sweep file: "
+        self.assertEqual(result.stderr.strip(), f"membrane_flow sweep: error: {path}:4:1: malformed JSON in sweep file: "
                                                 f"Expecting property name enclosed in double quotes")
 
     def test_duplicate_key_missing_file_bad_values(self):
@@ -362,7 +362,7 @@ class Signals(Base):
 
     def start(self, vary, workers=2):
         path = self.write_sweep(self.spec(vary))
-        process = subprocess.Popen([PYTHON, os.path.join(SCRIPTS, 'sweep.py'), path, '--exe', self.fake,
+        process = subprocess.Popen([*SWEEP, path, '--exe', self.fake,
                                     '--workers', str(workers)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                    text=True, start_new_session=True)
         cases = os.path.join(self.root, 'out', 'cases')
@@ -424,7 +424,7 @@ class Signals(Base):
                 pass
 
     def test_critical_value_interrupted(self):
-        process = subprocess.Popen([PYTHON, os.path.join(SCRIPTS, 'critical_value.py'), SMALL,
+        process = subprocess.Popen([*CRITICAL, SMALL,
                                     'Material/Line tension', '500', '1000', '--tolerance', '0.1', '--output',
                                     os.path.join(self.root, 'crit'), '--exe', self.fake, '--set', 'Fake/Sleep=30'],
                                    stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)

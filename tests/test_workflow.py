@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Tests of the science workflow (scripts/membrane_workflow): the budding-time definition
+"""Tests of the science workflow (membrane_flow.workflow): the budding-time definition
 on synthetic statistics with a known answer, bisection on a cheap outcome function, and
 the resume semantics of a sweep that is killed and started again.
 Usage: test_workflow.py [membrane-flow] [small.prm]   (the sweep test needs both)"""
@@ -17,10 +17,9 @@ import unittest
 import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, '..', 'scripts'))
-from membrane_workflow.budding_time import budding_time  # noqa: E402
-from membrane_workflow.critical import bisect  # noqa: E402
-from membrane_workflow.threshold_time import brackets, first_crossing  # noqa: E402
+from membrane_flow.workflow.budding_time import budding_time  # noqa: E402 (PYTHONPATH: the build's python/)
+from membrane_flow.workflow.critical import bisect  # noqa: E402
+from membrane_flow.workflow.threshold_time import brackets, first_crossing  # noqa: E402
 
 EXE = sys.argv[1] if len(sys.argv) > 1 else None
 SMALL = sys.argv[2] if len(sys.argv) > 2 else None
@@ -121,7 +120,7 @@ class SweepResume(unittest.TestCase):
             sweep_file = os.path.join(root, 'sweep.json')
             with open(sweep_file, 'w') as f:
                 json.dump(spec, f)
-            command = ['/usr/bin/python3', os.path.join(HERE, '..', 'scripts', 'sweep.py'), sweep_file,
+            command = ['/usr/bin/python3', '-m', 'membrane_flow', 'sweep', sweep_file,
                        '--exe', os.path.abspath(EXE), '--workers', '1']
             cases = os.path.join(root, 'out', 'cases')
 

@@ -2,7 +2,7 @@
 import os
 
 from . import _core
-from .results import parse_prm
+from .run import parse_prm
 
 Error = _core.Error
 

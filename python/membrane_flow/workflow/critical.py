@@ -1,5 +1,102 @@
-#!/usr/bin/python3
-"""Find where the outcome class of a run changes as one parameter varies (bisection).
+"""Critical-value search: bisection on one parameter for the change between outcome classes.
+
+`bisect(evaluate, low, high, tolerance)` needs evaluate(low) != evaluate(high) (the
+classes, e.g. 'incomplete bud' and 'complete bud'); it halves the bracket, keeping
+one end in each class, until it is narrower than `tolerance` (absolute; or relative to
+the midpoint with relative=True, or in log space with geometric=True). It returns the
+final bracket, the two outcomes, every evaluation in order and whether the tolerance was
+reached within `max_evaluations`. A monotone change is assumed.
+
+Errors (both carry `runs`, the evaluations so far, and `bracket`, the last valid bracket
+or None):
+- NoChange (a ValueError): the two ends give the same outcome;
+- FailedRun: an evaluation gave an outcome in `failed` (default: 'failed'). A failed run
+  has no outcome class, so it never becomes a bracket end: the search stops at once.
+
+`classifier(spec)` turns a class specification into a function of a run's summary (a dict
+with the keys of summary.json): 'outcome' (the run's own outcome: flat / incomplete bud /
+complete bud / ...), 'protrusion:X' (protruding when domain_protrusion >= X) or 'neck:X'
+(necked when neck_ratio < X). A bad specification raises ValueError.
+"""
+import argparse
+import json
+import math
+import os
+import signal
+import sys
+
+from .sweep import Sweep, SweepError, normalize_name, write_atomically
+
+
+def classifier(spec):
+    if spec == 'outcome':
+        return lambda s: s['outcome']
+    kind, _, threshold = spec.partition(':')
+    try:
+        x = float(threshold)
+    except ValueError:
+        x = None
+    if x is not None and math.isfinite(x):
+        if kind == 'protrusion':
+            return lambda s: 'protruding' if s['domain_protrusion'] >= x else 'not protruding'
+        if kind == 'neck':
+            return lambda s: 'necked' if s['neck_ratio'] < x else 'no neck'
+    raise ValueError(f'--classify {spec}: expected outcome, protrusion:X or neck:X (X a number)')
+
+
+class BisectionError(ValueError):
+    def __init__(self, message, runs, bracket=None, outcomes=None):
+        super().__init__(message)
+        self.runs, self.bracket, self.outcomes = list(runs), bracket, outcomes
+
+
+class NoChange(BisectionError):
+    pass
+
+
+class FailedRun(BisectionError):
+    def __init__(self, message, runs, value, bracket=None, outcomes=None):
+        super().__init__(message, runs, bracket, outcomes)
+        self.value = value
+
+
+def bisect(evaluate, low, high, tolerance, geometric=False, relative=False, max_evaluations=60, failed=('failed',)):
+    runs = []
+    bracket, outcomes = None, None
+
+    def run(x):
+        outcome = evaluate(x)
+        runs.append((x, outcome))
+        if outcome in failed:
+            where = (f'inside the bracket [{bracket[0]:.6g}, {bracket[1]:.6g}]' if bracket
+                     else 'at an end of the interval')
+            raise FailedRun(f'the run at {x:.6g} ({where}) failed: a failed run has no outcome class and cannot '
+                            f'end a bracket', runs, x, bracket, outcomes)
+        return outcome
+
+    low_outcome, high_outcome = run(low), run(high)
+    if low_outcome == high_outcome:
+        raise NoChange(f'no change of outcome in [{low}, {high}]: both ends give "{low_outcome}"', runs,
+                       outcomes=[low_outcome, high_outcome])
+    bracket, outcomes = [low, high], [low_outcome, high_outcome]
+
+    def width(a, b):
+        return (b - a) / (0.5 * (a + b)) if relative else (math.log(b / a) if geometric else b - a)
+
+    while width(low, high) > tolerance and len(runs) < max_evaluations:
+        middle = math.sqrt(low * high) if geometric else 0.5 * (low + high)
+        if run(middle) == low_outcome:
+            low = middle
+        else:
+            high = middle
+        bracket = [low, high]
+    return {'bracket': [low, high], 'outcomes': [low_outcome, high_outcome], 'runs': runs,
+            'converged': width(low, high) <= tolerance}
+
+
+# -- the command line: python3 -m membrane_flow critical ---------------------------------------
+
+COMMAND_HELP = """Find where the outcome class of a run changes as one parameter varies (bisection).
 
 Every run is a case of a sweep directory (reused if run before; a directory of a different
 search or sweep is refused unless --overwrite); the final bracket and all runs are written
@@ -11,38 +108,29 @@ and an "error" when no bracket was found).
 
 The class of a run is its outcome (summary.json's "outcome") by default; --classify
 protrusion:X classes the runs as protruding (domain_protrusion >= X) or not, and --classify
-neck:X as necked (neck_ratio < X) or not: the thresholds of scripts/continuation.py. A
+neck:X as necked (neck_ratio < X) or not: the thresholds of the continuation command. A
 protrusion threshold finds the flat-start threshold of a budding setup by an end time at which
 no neck has closed yet; the outcome needs a complete bud (Outcome/Complete neck ratio).
 
 Exit codes: 0 bracket found; 1 bad arguments or entry names, or both ends give the same
 outcome; 2 a run failed; 130 / 143 stopped by SIGINT / SIGTERM.
 
-Usage: critical_value.py <base.prm> <Section/Entry> <low> <high> --tolerance T --output DIR
-                         [--geometric] [--classify outcome|protrusion:X|neck:X]
-                         [--set 'Section/Entry=value' ...] [--ranks R] [--exe PATH] [--overwrite]
+Usage: python3 -m membrane_flow critical <base.prm> <Section/Entry> <low> <high> --tolerance T --output DIR
+           [--geometric] [--classify outcome|protrusion:X|neck:X]
+           [--set 'Section/Entry=value' ...] [--ranks R] [--exe PATH] [--overwrite]
 Example (critical line tension of 7.3's setup, to 5 %):
-  scripts/critical_value.py experiments/7.3-budding.prm 'Material/Line tension' 300 1500 \\
+  python3 -m membrane_flow critical experiments/7.3-budding.prm 'Material/Line tension' 300 1500 \\
       --tolerance 0.05 --geometric --output results/critical-sigma"""
-import argparse
-import json
-import os
-import signal
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from membrane_workflow.critical import FailedRun, NoChange, bisect, classifier  # noqa: E402
-from membrane_workflow.sweep import Sweep, SweepError, normalize_name, write_atomically  # noqa: E402
-
-NAME = 'critical_value.py'
+NAME = 'membrane_flow critical'
 
 
 class Interrupted(Exception):
     pass
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def _main(argv):
+    parser = argparse.ArgumentParser(description=COMMAND_HELP, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('base')
     parser.add_argument('parameter')
     parser.add_argument('low', type=float)
@@ -54,11 +142,10 @@ def main():
                         help="class of a run: outcome (default), protrusion:X or neck:X")
     parser.add_argument('--set', action='append', default=[], help="fixed override 'Section/Entry=value'")
     parser.add_argument('--ranks', type=int, default=1)
-    parser.add_argument('--exe', default=os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'build',
-                                                      'membrane-flow'))
+    parser.add_argument('--exe', help='the program (default: see membrane_flow.launch.find_executable)')
     parser.add_argument('--overwrite', action='store_true',
                         help='the output directory holds a different search or sweep: delete its cases first')
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     if not args.low < args.high:
         parser.error(f'need low < high (got {args.low}, {args.high})')
     if args.geometric and args.low <= 0:
@@ -153,9 +240,13 @@ def main():
     return code
 
 
-if __name__ == '__main__':
+def main(argv=None):
     try:
-        sys.exit(main())
+        return _main(argv)
     except KeyboardInterrupt:  # Ctrl-C before any run started
         print(f'{NAME}: interrupted before any run started', file=sys.stderr)
-        sys.exit(130)
+        return 130
+
+
+if __name__ == '__main__':
+    sys.exit(main())

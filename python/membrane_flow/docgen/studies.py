@@ -1,18 +1,22 @@
-#!/usr/bin/python3
 """Write docs/studies.md: the paper's parameter studies (Fig. 7.4 F-I) and the critical line
 tension, from the sweeps of experiments/studies/ and the bisection in results/studies/.
 
-Usage (after running the sweeps, see docs/workflow.md): make_study_docs.py [results/studies] [docs]"""
+Usage (after running the sweeps, see docs/workflow.md; from the repository's top directory):
+  python3 -m membrane_flow study-docs [results/studies] [docs]"""
 import csv
-import json
 import math
 import os
-import subprocess
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+from membrane_flow import run as reader
+from membrane_flow.docgen.branches import load_mesh
+from membrane_flow.pictures import study as plot_study
+from membrane_flow.workflow.budding_time import budding_time_of_run
+from membrane_flow.workflow.continuation import crossing, turning_point
+from membrane_flow.workflow.threshold_time import section as threshold_section
+
 studies = sys.argv[1] if len(sys.argv) > 1 else 'results/studies'
-docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
+docs = sys.argv[2] if len(sys.argv) > 2 else 'docs'
 images = os.path.join(docs, 'images', 'studies')
 os.makedirs(images, exist_ok=True)
 
@@ -25,13 +29,11 @@ STUDIES = [  # sweep name, varied column, paper panel, symbol, sign of dT_min/dp
 
 
 def branch_section(studies):
-    """Both branches of the 7.3 setup at 32 x 32 followed in sigma (scripts/continuation.py)."""
-    sys.path.insert(0, HERE)
-    from membrane_workflow.continuation import crossing, turning_point
+    """Both branches of the 7.3 setup at 32 x 32 followed in sigma (python3 -m membrane_flow continuation)."""
     paths = [os.path.join(studies, 'branches-32', d, 'branch.json') for d in ('down', 'up')]
     if not all(os.path.exists(p) for p in paths):
         return []
-    down, up = (json.load(open(p)) for p in paths)
+    down, up = (reader.read_json(p) for p in paths)
     cross = crossing(down, up)
     rows = {}
     for name, b in (('down', down), ('up', up)):
@@ -48,13 +50,13 @@ def branch_section(studies):
         table.append(f'| {value:g} | ' + ' | '.join(cells) + ' |')
     t_down, t_up = turning_point(down), turning_point(up)
     return ['## Both branches: continuation in sigma (32 x 32)\n',
-            '```sh\nscripts/continuation.py follow experiments/7.3-budding.prm "Material/Line tension" '
+            '```sh\n/usr/bin/python3 -m membrane_flow continuation follow experiments/7.3-budding.prm "Material/Line tension" '
             '2000 1500 1200 1000 900 800 700 600 \\\n    --classify protrusion:0.95 --max-time 3 '
             '--output results/studies/branches-32/down --set "Output/Write VTU=false" \\\n    --set "Mesh/Maximum refinement level=0"\n'
-            'scripts/continuation.py follow experiments/7.3-budding.prm "Material/Line tension" '
+            '/usr/bin/python3 -m membrane_flow continuation follow experiments/7.3-budding.prm "Material/Line tension" '
             '600 700 800 900 1000 1200 1500 2000 \\\n    --classify protrusion:0.95 --max-time 3 '
             '--output results/studies/branches-32/up --set "Output/Write VTU=false" \\\n    --set "Mesh/Maximum refinement level=0"\n'
-            'scripts/continuation.py compare results/studies/branches-32/down results/studies/branches-32/up\n```\n',
+            '/usr/bin/python3 -m membrane_flow continuation compare results/studies/branches-32/down results/studies/branches-32/up\n```\n',
             'Each value relaxes from the previous one\'s equilibrium until the relative energy rate falls below '
             '1e-3 per unit time (or 3 time units pass); the classes are those of the protrusion threshold 0.95 '
             '(on this mesh no state has a neck). The protruding branch, followed down, holds to sigma = '
@@ -71,11 +73,9 @@ def branch_section(studies):
 
 
 def adaptive_branch_paragraph(studies):
-    """The paragraph after the 32 x 32 branch table: a pointer to docs/branches.md (make_branch_docs.py), with
+    """The paragraph after the 32 x 32 branch table: a pointer to docs/branches.md (python3 -m membrane_flow branch-docs), with
     the crossing and turning points of the branches followed with one level of local refinement (its main
     follows and the follows that fill in values between them), when both branches are there."""
-    from make_branch_docs import load_mesh
-    from membrane_workflow.continuation import crossing, turning_point
     text = ('[branches.md](branches.md) follows the same two branches with one level of local refinement at the '
             'interface (`--set "Mesh/Maximum refinement level=1"`, the setting that reproduces uniform 64 x 64), with '
             'further values between its turning points, and plots both branches on both meshes '
@@ -110,7 +110,7 @@ lines = ['# Parameter studies: budding time and critical line tension\n',
          '(`Mesh/Maximum refinement level = 2`) the same sigma = 1000 run has neck ratio 0.94 at t = 1.3,',
          '0.77 at t = 2.2 and 0.71 at t = 3.1 (neck radius 0.089 under a bud of radius 0.125), still',
          'narrowing. `T_min` is defined from the protrusion and the energy ([workflow.md](workflow.md)) and',
-         'does not depend on the outcome class. `scripts/continuation.py` follows both branches (flat start',
+         'does not depend on the outcome class. `/usr/bin/python3 -m membrane_flow continuation` follows both branches (flat start',
          'and budded state) in sigma ([workflow.md](workflow.md)).' + '\n']
 for name, column, panel, symbol, paper_sign in STUDIES:
     path = os.path.join(studies, name, 'results.csv')
@@ -120,10 +120,9 @@ for name, column, panel, symbol, paper_sign in STUDIES:
     with open(path) as f:
         rows = sorted(csv.DictReader(f), key=lambda r: float(r[column]))
     png = f'tmin-{name}.png'
-    subprocess.run(['/usr/bin/python3', os.path.join(HERE, 'plot_study.py'), path, column, '--logy', '--title',
-                    f'{panel}: T_min vs {symbol}', '-o', os.path.join(images, png)], check=True)
+    plot_study.main([path, column, '--logy', '--title', f'{panel}: T_min vs {symbol}', '-o', os.path.join(images, png)])
     lines += [f'## {panel}: T_min against {symbol}\n',
-              f'```sh\nscripts/sweep.py experiments/studies/{name}.json --workers 2\n```\n',
+              f'```sh\n/usr/bin/python3 -m membrane_flow sweep experiments/studies/{name}.json --workers 2\n```\n',
               f'| {symbol} | outcome | T_min | domain protrusion | neck radius | steps | wall |', '|---|---|---|---|---|---|---|']
     for r in rows:
         tmin = f"{float(r['T_min']):.3f}" if r['T_min'] else 'not reached'
@@ -144,8 +143,6 @@ for name, column, panel, symbol, paper_sign in STUDIES:
 
 sensitivity = os.path.join(studies, 'sensitivity')
 if os.path.isdir(sensitivity):
-    sys.path.insert(0, HERE)
-    from membrane_workflow.budding_time import budding_time_of_run
     lines += ['## Sensitivity of T_min to the discretization\n',
               'The sigma = 1500 case (T_min from the sigma study above) repeated with a finer mesh and a',
               'smaller cap on tau:\n',
@@ -158,8 +155,7 @@ if os.path.isdir(sensitivity):
     for variant, label in (('n48', '48 x 48 cells, tau <= 1e-2'), ('tau2.5e-3', '32 x 32 cells, tau <= 2.5e-3')):
         run = os.path.join(sensitivity, variant)
         if os.path.exists(os.path.join(run, 'summary.json')):
-            with open(os.path.join(run, 'summary.json')) as f:
-                summary = json.load(f)
+            summary = reader.load_summary(run)
             lines.append(f"| {label} | {budding_time_of_run(run):.3f} | {summary['steps']} | "
                          f"{summary['stop_reason'].split(':')[0]} |")
     lines.append('\nAgainst the variation of T_min across each study (a factor 4.4 over the sigma range), '
@@ -181,7 +177,7 @@ CRITICAL_MESHES = [  # output directory, refinement level, mesh
 
 
 def critical_command(directory, level):
-    return ('```sh\nscripts/critical_value.py experiments/7.3-budding.prm "Material/Line tension" 630 1000 \\\n'
+    return ('```sh\n/usr/bin/python3 -m membrane_flow critical experiments/7.3-budding.prm "Material/Line tension" 630 1000 \\\n'
             f'    --tolerance 0.05 --geometric --classify protrusion:0.95 --output results/studies/{directory} \\\n'
             '    --set "Time stepping/End time=2.5" --set "Output/Interval=0.5" --set "Checkpoint/Interval=0" \\\n'
             f'    --set "Mesh/Maximum refinement level={level}"\n```\n')
@@ -193,8 +189,7 @@ def critical_bisections(studies):
     for directory, level, mesh in CRITICAL_MESHES:
         path = os.path.join(studies, directory, 'bisection.json')
         if os.path.exists(path):
-            with open(path) as f:
-                b = json.load(f)
+            b = reader.read_json(path)
             if b.get('bracket') and b.get('classify', 'outcome').startswith('protrusion'):
                 found.append((directory, level, mesh, b))
     return found
@@ -222,8 +217,6 @@ if uniform:
               'refinement (0.71 at t = 3.1, [mesh-convergence.md](mesh-convergence.md)), so the outcome is '
               '"incomplete bud" at both ends. Every run of the bisection:\n'] + critical_runs_table(uniform) + ['']
 lines += branch_section(studies)
-sys.path.insert(0, HERE)
-from membrane_workflow.threshold_time import section as threshold_section  # noqa: E402
 lines += threshold_section(studies)
 adaptive_threshold = threshold_section(studies, name='threshold-time-adaptive1')
 if adaptive_threshold:  # what the brackets of these runs say (their values, as in the page)

@@ -42,8 +42,8 @@ environment unless already set. Each case is its own process group; after
 a grace period or a second signal), no further case starts, and `stopping` holds the signal.
 A case's simulator also gets SIGTERM if the sweep process dies (Linux parent-death signal).
 """
+import argparse
 import csv
-import ctypes
 import difflib
 import hashlib
 import io
@@ -61,15 +61,16 @@ from concurrent.futures import ThreadPoolExecutor, as_completed
 
 import numpy as np
 
+from .. import launch
+from ..run import FileError, load_summary, read_json
 from .budding_time import budding_time_of_run
-from .statistics import load_summary
 
 SUMMARY_COLUMNS = ['outcome', 'stop_reason', 'failed', 'time', 'steps', 'rejected_steps', 'energy', 'bud_height',
                    'neck_radius', 'neck_ratio', 'domain_area', 'domain_protrusion', 'bud_direction', 'area_drift',
                    'mass_drift', 'wall_seconds']
 FAILED = 'failed'                      # the outcome column of a failed case
 CONTROLLED = ('Output/Directory',)     # set by the sweep for each case
-THREAD_VARIABLES = ('OMP_NUM_THREADS', 'OPENBLAS_NUM_THREADS')
+THREAD_VARIABLES = launch.THREAD_VARIABLES
 SPEC_KEYS = ('base', 'output', 'set', 'vary', 'description', 'comment')
 KILL_GRACE_SECONDS = 10.0
 
@@ -162,29 +163,15 @@ def write_atomically(path, text):
 def read_json_file(path, what='file'):
     """A JSON file, or SweepError with the file, line and column of a syntax error."""
     try:
-        with open(path) as f:
-            text = f.read()
-    except OSError as e:
-        raise SweepError(f'cannot read {what} {path}: {e.strerror}') from None
-
-    def no_duplicates(pairs):
-        seen = {}
-        for key, value in pairs:
-            if key in seen:
-                raise SweepError(f'{path}: malformed {what}: the key {key!r} appears twice in one object')
-            seen[key] = value
-        return seen
-    try:
-        return json.loads(text, object_pairs_hook=no_duplicates)
-    except json.JSONDecodeError as e:
-        raise SweepError(f'{path}:{e.lineno}:{e.colno}: malformed JSON in {what}: {e.msg}') from None
+        return read_json(path, what)
+    except FileError as e:
+        raise SweepError(str(e)) from None
 
 
 def declared_entries(exe):
     """Every 'Section/Sub/Entry' path the simulator declares (from `exe --print-parameters`)."""
     try:
-        result = subprocess.run([exe, '--print-parameters'], capture_output=True, text=True, timeout=120,
-                                stdin=subprocess.DEVNULL)
+        result = launch.output([exe, '--print-parameters'], timeout=120)
     except OSError as e:
         raise SweepError(f'cannot run the simulator {exe}: {e.strerror}') from None
     except subprocess.TimeoutExpired:
@@ -243,25 +230,8 @@ def describe_exit(code):
     return f'exit code {code}'
 
 
-def _parent_death_signal():
-    """In the child before exec: SIGTERM when the sweep's thread that started it dies (Linux)."""
-    try:
-        _PRCTL(1, signal.SIGTERM, 0, 0, 0)  # PR_SET_PDEATHSIG
-    except Exception:  # noqa: BLE001 -- best effort, never stop the case from starting
-        pass
-
-
-try:
-    _PRCTL = ctypes.CDLL(None, use_errno=True).prctl
-    _PRCTL.argtypes = [ctypes.c_int, ctypes.c_ulong, ctypes.c_ulong, ctypes.c_ulong, ctypes.c_ulong]
-    _PRCTL.restype = ctypes.c_int
-    _PREEXEC = _parent_death_signal if sys.platform.startswith('linux') else None
-except (OSError, AttributeError):
-    _PREEXEC = None
-
-
 class Sweep:
-    def __init__(self, base, output, fixed=None, exe='build/membrane-flow', workers=1, ranks=1, launcher='mpirun',
+    def __init__(self, base, output, fixed=None, exe=None, workers=1, ranks=1, launcher='mpirun',
                  extra_args=(), vary=None, cases=None, source='sweep'):
         """fixed: {'Section/Entry': value} for every case; vary: {'Section/Entry': [values]} of a sweep, or
         {'Section/Entry': 'bisection'} for values chosen as the cases run (cases=None)."""
@@ -273,7 +243,7 @@ class Sweep:
         if both:
             raise SweepError(f'the entry {both[0]!r} is both in "set" and in "vary"')
         self.cases = cases
-        self.exe, self.workers, self.ranks, self.launcher = exe, workers, ranks, launcher
+        self.exe, self.workers, self.ranks, self.launcher = launch.find_executable(exe), workers, ranks, launcher
         self.extra_args = list(extra_args)
         self.stopping = None  # the signal that stops the sweep
         self._running = set()
@@ -383,16 +353,11 @@ class Sweep:
         for name, value in list(self.fixed.items()) + list(values.items()):
             args += ['--set', f'{name}={format_value(value)}']
         args += ['--set', f'Output/Directory={directory}'] + self.extra_args + [self.base]
-        if self.ranks > 1:
-            args = self.launcher.split() + ['-np', str(self.ranks)] + args
-        return args
+        return launch.command(args[0], args[1:], self.ranks, self.launcher)
 
     def environment(self):
-        env = dict(os.environ)
-        if self.workers > 1 or self.ranks > 1:  # one thread per process: cases share the cores
-            for name in THREAD_VARIABLES:
-                env.setdefault(name, '1')
-        return env
+        # one thread per process when cases or ranks share the cores (a value already set is kept)
+        return launch.environment(threads=self.workers > 1 or self.ranks > 1, force=False, mpi=self.ranks > 1)
 
     def run_case(self, values):
         """Run one case unless finished. Returns (values, status): 'skipped', 'finished', 'failed (...)',
@@ -409,8 +374,7 @@ class Sweep:
                          json.dumps({'vary': values, 'set': self.fixed, 'command': command}, indent=1) + '\n')
         with open(os.path.join(directory, 'log.txt'), 'w') as log:
             try:
-                process = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                           env=self.environment(), start_new_session=True, preexec_fn=_PREEXEC)
+                process = launch.start(command, stdout=log, stderr=subprocess.STDOUT, env=self.environment())
             except OSError as e:
                 log.write(f'cannot start {command[0]}: {e.strerror}\n')
                 process = None
@@ -477,12 +441,7 @@ class Sweep:
 
     @staticmethod
     def _kill(process, sig):
-        if process is None:
-            return
-        try:
-            os.killpg(process.pid, sig)  # the case's own process group: the simulator, mpirun and its ranks
-        except (ProcessLookupError, PermissionError):
-            pass
+        launch.kill_group(process, sig)  # the case's own process group: the simulator, mpirun and its ranks
 
     # -- results --------------------------------------------------------------------------------
 
@@ -581,3 +540,82 @@ class Sweep:
         os.makedirs(self.output, exist_ok=True)
         write_atomically(os.path.join(self.output, 'results.csv'), text.getvalue())
         return rows
+
+
+# -- the command line: python3 -m membrane_flow sweep ------------------------------------------
+
+COMMAND_HELP = """Run a parameter sweep of membrane-flow (see membrane_flow/workflow/sweep.py for the
+sweep-file format). Results: <output>/results.csv plus each case's own run directory.
+A killed sweep started again skips its finished cases.
+
+Before any case runs, every entry name is checked against `membrane-flow --print-parameters`,
+and the output directory against the sweep recorded in <output>/sweep.json: a directory of a
+different sweep is refused unless --overwrite (which deletes its old cases).
+
+Exit codes: 0 every case finished; 1 bad sweep file, entry name or output directory (nothing
+run); 2 some case failed (results.csv is written; failed cases have outcome "failed");
+130 / 143 stopped by SIGINT / SIGTERM (running cases are terminated, results.csv is written).
+
+Usage: python3 -m membrane_flow sweep <sweep.json> [--workers N] [--ranks R] [--launcher 'mpirun --hostfile h'] [--exe PATH]
+                                      [--overwrite] [--dry-run]
+Example: python3 -m membrane_flow sweep experiments/sweeps/sigma.json --workers 2"""
+
+NAME = 'membrane_flow sweep'
+
+
+def _main(argv):
+    parser = argparse.ArgumentParser(description=COMMAND_HELP, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument('sweep_file')
+    parser.add_argument('--workers', type=int, default=1,
+                        help='cases run at the same time (with N > 1 each case gets OMP_NUM_THREADS=1 and '
+                             'OPENBLAS_NUM_THREADS=1 unless set)')
+    parser.add_argument('--ranks', type=int, default=1, help='MPI ranks per case (mpirun -np R)')
+    parser.add_argument('--launcher', default='mpirun', help='MPI launcher command for --ranks > 1')
+    parser.add_argument('--exe', help='the program (default: see membrane_flow.launch.find_executable)')
+    parser.add_argument('--overwrite', action='store_true',
+                        help='the output directory holds a different sweep: delete its cases and start over')
+    parser.add_argument('--dry-run', action='store_true',
+                        help='check the sweep file, entry names and output directory, list the cases, run nothing')
+    args = parser.parse_args(argv)
+    if args.workers < 1 or args.ranks < 1:
+        parser.error('--workers and --ranks must be at least 1')
+    try:
+        sweep, cases = Sweep.from_file(args.sweep_file, exe=args.exe, workers=args.workers, ranks=args.ranks,
+                                       launcher=args.launcher)
+        sweep.check_names()
+        sweep.prepare(overwrite=args.overwrite, dry_run=args.dry_run)
+    except SweepError as e:
+        print(f'{NAME}: error: {e}', file=sys.stderr)
+        return 1
+    if args.dry_run:
+        for values in cases:
+            print(f'{os.path.basename(sweep.case_dir(values))} {describe_values(values)}'
+                  f'{" (finished)" if sweep.is_finished(values) else ""}')
+        print(f'{len(cases)} cases; output {sweep.output}')
+        return 0
+    sweep.install_signal_handlers()
+    rows = sweep.run(cases, progress=lambda text: print(text, flush=True))
+    table = os.path.join(sweep.output, 'results.csv')
+    failed = [r for r in rows if r['outcome'] == FAILED]
+    print(f'{len(rows)} of {len(cases)} cases in {table}', flush=True)
+    if failed:
+        print(f'{NAME}: {len(failed)} of {len(rows)} cases failed: ' +
+              '; '.join(f'{r["case"]} ({r["stop_reason"]})' for r in failed[:5]) +
+              ('; ...' if len(failed) > 5 else ''), file=sys.stderr)
+    if sweep.stopping is not None:
+        print(f'{NAME}: stopped by {signal.Signals(sweep.stopping).name}: {len(cases) - len(rows)} cases not run '
+              f'or interrupted; start the sweep again to run them', file=sys.stderr)
+        return 128 + sweep.stopping
+    return 2 if failed else 0
+
+
+def main(argv=None):
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:  # Ctrl-C before any case started
+        print(f'{NAME}: interrupted before any case started', file=sys.stderr)
+        return 130
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,10 +1,9 @@
-#!/usr/bin/python3
 """Render the gallery docs/gallery.md: one picture per figure of the paper (Figs. 7.1-7.4)
 and one of the closed vesicles, made from the runs of scripts/run_experiments.sh in results/. Each panel is a snapshot of a
-run coloured by phi, rendered with VTK (scripts/render_surface.py); energy panels come from
+run coloured by phi, rendered with VTK (membrane_flow/pictures/render.py); energy panels come from
 the statistics.
 
-Usage: make_gallery.py [results-dir] [docs-dir]
+Usage (from the repository's top directory): python3 -m membrane_flow gallery [results-dir] [docs-dir]
 A figure whose runs are not all in results-dir keeps its section (and picture) of the existing page."""
 import os
 import sys
@@ -14,15 +13,14 @@ matplotlib.use('Agg')
 import matplotlib.pyplot as plt
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-from membrane_workflow.experiment_runs import command  # noqa: E402
-from membrane_workflow.statistics import load_statistics  # noqa: E402
-from render_surface import SurfaceRenderer, read_vtu, surface_polydata  # noqa: E402
-from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from membrane_flow.pictures.render import SurfaceRenderer, read_vtu, surface_polydata
+from membrane_flow.run import load_statistics
+from membrane_flow.workflow.experiment_runs import command
 
 results = sys.argv[1] if len(sys.argv) > 1 else 'results'
-docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
+docs = sys.argv[2] if len(sys.argv) > 2 else 'docs'
 images = os.path.join(docs, 'images', 'gallery')
 os.makedirs(images, exist_ok=True)
 
@@ -63,7 +61,7 @@ lines = ['# Gallery: the paper\'s figures 7.1-7.4 and closed vesicles\n',
          'Each picture is made from the full runs of the experiments (`experiments/`, see',
          '[experiments.md](experiments.md)); red is phase A (phi = +1), blue phase B. To regenerate all:\n',
          '```sh\nscripts/run_experiments.sh            # the runs, into results/ (~35 min)',
-         'scripts/make_gallery.py results docs   # this page\n```\n']
+         '/usr/bin/python3 -m membrane_flow gallery results docs   # this page\n```\n']
 
 
 def previous_sections(path):

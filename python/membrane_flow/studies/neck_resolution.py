@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Neck resolution of the 7.3 bud: uniform 32 x 32 mesh against local refinement.
 
 The 7.3 budding setup (experiments/7.3-budding.prm) at a large line tension, end time 4, runs on
@@ -27,14 +26,15 @@ a thinner interface lets the bud's neck close further.
 --end-time T runs to T instead of 4; --min-cell-quality Q sets Time stepping/Minimum cell
 quality (the default 0.1 rejects the steps that close a corner of the rhombi in a closing neck).
 
-Every run: OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1, working directory the repository root,
+Every run: OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1, working directory the repository root (the
+current directory: run the command from there),
 one run at a time, VTU output and checkpoints off. A case is finished when its summary.json
 exists (also a failed run writes one); finished cases are not run again.
 
 Then the report docs/neck-resolution.md and the figure docs/images/neck-resolution.png are
 written from the statistics.txt and summary.json of every finished case.
 
-Usage: scripts/neck_study.py [--dry-run] [--report-only] [--max-level 3] [--exe PATH]
+Usage: python3 -m membrane_flow neck-resolution [--dry-run] [--report-only] [--max-level 3] [--exe PATH]
            [--timeout SECONDS] [--sigma S] [--xi X] [--end-time T] [--min-cell-quality Q]
 """
 import argparse
@@ -48,11 +48,11 @@ import time
 
 import numpy as np
 
-ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
-sys.path.insert(0, os.path.join(ROOT, 'scripts'))
-from membrane_workflow.statistics import load_statistics, load_summary  # noqa: E402
+from .. import launch
+from ..run import load_statistics, load_summary
 
-EXE = 'build/membrane-flow'
+ROOT = os.getcwd()  # the repository's top directory: the input file, the runs and the pages are relative to it
+EXE = 'build/membrane-flow'  # as the report shows the runs (the one run: launch.find_executable)
 BASE = 'experiments/7.3-budding.prm'
 OUTPUT = 'results/studies/neck'
 DOC = 'docs/neck-resolution.md'
@@ -68,7 +68,7 @@ FILE_PINCH_RADIUS = 0.03  # Outcome/Pinch-off radius (default)
 PINCH_RADIUS = FILE_PINCH_RADIUS  # scaled with --xi
 MIN_CELL_QUALITY = None  # --min-cell-quality (None: the default 0.1)
 CELLS_PER_XI = {2: 3.0, 3: 6.0}
-ENV = {'OMP_NUM_THREADS': '1', 'OPENBLAS_NUM_THREADS': '1'}
+ENV = {name: '1' for name in launch.THREAD_VARIABLES}  # as the report shows them (the runs: launch.environment)
 
 
 def fmt(x):
@@ -169,12 +169,11 @@ def run_case(case, exe, timeout):  # a run stopped by the timeout keeps its last
     cmd = ['/usr/bin/time', '-v'] + case.command(exe)
     print('running', case.name, flush=True)
     with open(case.log, 'w') as log:
-        p = subprocess.Popen(cmd, cwd=ROOT, env={**os.environ, **ENV}, stdout=log,
-                             stderr=subprocess.STDOUT, start_new_session=True)
+        p = launch.start(cmd, cwd=ROOT, env=launch.environment(), stdout=log, stderr=subprocess.STDOUT)
         try:
             code = p.wait(timeout=timeout)
         except subprocess.TimeoutExpired:
-            os.killpg(p.pid, signal.SIGTERM)  # the run's own process group: time and the solver
+            launch.kill_group(p, signal.SIGTERM)  # the run's own process group: time and the solver
             p.wait()
             # /usr/bin/time exits at once; the solver still writes its checkpoint and summary.json
             for _ in range(600):
@@ -328,7 +327,7 @@ def report(cases, exe):
              'page and its figure; `--dry-run` prints the commands):')
     L.append('')
     L.append('```sh')
-    L.append(' '.join(['scripts/neck_study.py'] + OPTIONS))
+    L.append(' '.join(['/usr/bin/python3 -m membrane_flow neck-resolution'] + OPTIONS))
     L.append('```')
     L.append('')
     L.append('The runs it makes (from the repository root):')
@@ -518,13 +517,13 @@ def report(cases, exe):
     print('wrote', DOC, 'and', FIGURE)
 
 
-def main():
+def main(argv=None):
     global XI, SIGMA, SIGMA_FALLBACK, OUTPUT, DOC, FIGURE, OPTIONS, PINCH_RADIUS, END_TIME, MIN_CELL_QUALITY
     p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     p.add_argument('--dry-run', action='store_true', help='print the commands of the cases to run')
     p.add_argument('--report-only', action='store_true', help='run nothing; write the report')
     p.add_argument('--max-level', type=int, default=3, help='highest refinement level to run (2 or 3)')
-    p.add_argument('--exe', default=EXE)
+    p.add_argument('--exe', help='the program (default: see membrane_flow.launch.find_executable)')
     p.add_argument('--timeout', type=float, default=None, help='seconds per run')
     p.add_argument('--sigma', type=float, default=None,
                    help=f'line tension of the study (default {SIGMA:g}; the fallback is 4/3 of it)')
@@ -533,7 +532,9 @@ def main():
     p.add_argument('--end-time', type=float, default=END_TIME, help=f'end time of every run (default {END_TIME:g})')
     p.add_argument('--min-cell-quality', type=float, default=None,
                    help='Time stepping/Minimum cell quality of every run (default: the file\'s 0.1)')
-    args = p.parse_args()
+    args = p.parse_args(argv)
+    shown_exe = args.exe or EXE  # the report shows the runs with build/membrane-flow unless --exe was given
+    args.exe = launch.find_executable(args.exe)
     if not 0 < args.end_time <= 100:
         p.error('--end-time takes a time in (0, 100]')
     if args.min_cell_quality is not None and not 0 < args.min_cell_quality < 1:
@@ -565,7 +566,7 @@ def main():
             print('# every case has a summary.json; nothing to run')
         return
     cases = plan(args, execute=not args.report_only)
-    report(cases, args.exe)
+    report(cases, shown_exe)
 
 
 if __name__ == '__main__':

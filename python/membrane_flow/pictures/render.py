@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Render a membrane surface (a VTU file, or a snapshot of a PVD series) to PNG with VTK.
 
-Usage: render_surface.py <surface.pvd|file.vtu> <out.png> [options]
+Usage: python3 -m membrane_flow render <surface.pvd|file.vtu> <out.png> [options]
 
 The surface is drawn smooth-shaded and lit, coloured by a point field interpolated over the
 cells (phi by default, on a red/blue diverging map fixed to [-1, 1]: phase A red, phase B
@@ -12,7 +12,7 @@ taken as the surface positions: a `displacement` field, when present, is not app
 Snapshot of a PVD: --time T (closest to T) or --index K (K-th, negative from the end);
 default the last one. Camera: --view oblique|top|side, or --elev/--azim in degrees
 (matplotlib's convention), or --views 'elev,azim;elev,azim' for several views side by side.
-Headless: without a DISPLAY the script starts its own Xvfb (package xvfb).
+Headless: without a DISPLAY the command starts its own Xvfb (package xvfb).
 
 Importable: snapshots, select, read_vtu, surface_polydata, SurfaceRenderer, render_image."""
 import argparse
@@ -22,7 +22,6 @@ import shutil
 import subprocess
 import sys
 import weakref
-import xml.etree.ElementTree as ET
 
 import numpy as np
 
@@ -33,13 +32,14 @@ from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersCore import vtkAppendPolyData, vtkCleanPolyData, vtkPolyDataNormals
 from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
 from vtkmodules.vtkFiltersGeometry import vtkGeometryFilter
-from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
 from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkLightKit, vtkPolyDataMapper, vtkRenderer,
                                          vtkRenderWindow, vtkTextActor, vtkWindowToImageFilter)
 import vtkmodules.vtkRenderingFreeType  # noqa: F401  (text rendering)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401  (the OpenGL render window)
 from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from .. import run
 
 VIEWS = {'oblique': (35.0, -60.0), 'top': (90.0, -90.0), 'side': (0.0, -90.0)}
 PHASE_RANGE = (-1.0, 1.0)
@@ -50,12 +50,10 @@ PHASE_RANGE = (-1.0, 1.0)
 # ---------------------------------------------------------------------------------------------
 def snapshots(pvd):
     """[(time, path)] of a PVD series, in order of time."""
-    root = ET.parse(pvd).getroot()
-    series = [(float(d.get('timestep')), os.path.join(os.path.dirname(pvd), d.get('file')))
-              for d in root.findall('.//DataSet')]
+    series = run.read_pvd(pvd)
     if not series:
         raise SystemExit(f'{pvd}: no snapshots listed')
-    return sorted(series, key=lambda s: s[0])
+    return series
 
 
 def select(path, time=None, index=None):
@@ -74,22 +72,17 @@ def select(path, time=None, index=None):
 
 
 def read_grid(path):
-    """The unstructured grid of a .vtu or .pvtu file."""
+    """The unstructured grid of a .vtu or .pvtu file (membrane_flow.run.read_grid; a missing or
+    empty file ends the program with a message)."""
     if not os.path.exists(path):
         raise SystemExit(f'{path}: no such file')
-    reader = vtkXMLPUnstructuredGridReader() if path.endswith('.pvtu') else vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    grid = reader.GetOutput()
-    if grid.GetNumberOfCells() == 0:
-        raise SystemExit(f'{path}: no cells')
-    return grid
+    try:
+        return run.read_grid(path)
+    except ValueError:
+        raise SystemExit(f'{path}: no cells') from None
 
 
-def grid_time(grid, fallback=None):
-    """The TIME field data of a grid (written by the simulator), else `fallback`."""
-    array = grid.GetFieldData().GetArray('TIME')
-    return float(array.GetTuple1(0)) if array is not None and array.GetNumberOfTuples() else fallback
+grid_time = run.grid_time
 
 
 def read_vtu(path, time=None, index=None):
@@ -483,7 +476,7 @@ def render_image(path, size=(800, 600), time=None, index=None, field='phi', valu
 
 
 def add_common_options(parser):
-    """Options shared by render_surface.py and make_movie.py."""
+    """Options shared by the render and movie commands."""
     parser.add_argument('--field', default='phi', help='point (or cell) field to colour by (default phi)')
     parser.add_argument('--range', help="colour range 'low,high' (default: [-1, 1] for phi, else the data)")
     parser.add_argument('--cmap', help='matplotlib colour map (default coolwarm, viridis for unsigned fields)')
@@ -525,14 +518,14 @@ def options_from(args):
                 size=parse_pair(args.size, 'size'), label=args.label)
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('input', help='surface.pvd (a series) or a .vtu/.pvtu file')
     parser.add_argument('output', help='PNG file to write')
     parser.add_argument('--time', type=float, help='PVD: the snapshot closest to this time (default: the last)')
     parser.add_argument('--index', type=int, help='PVD: the snapshot with this index (negative: from the end)')
     add_common_options(parser)
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     if not os.path.isfile(args.input):
         parser.error(f'{args.input} does not exist (a .vtu, .pvtu or .pvd file of a run)')
     pixels = render_image(args.input, time=args.time, index=args.index, **options_from(args))

@@ -1,14 +1,14 @@
 #!/usr/bin/python3
 """Render every snapshot of a PVD series and encode an MP4 movie (H.264, with ffmpeg).
 
-Usage: make_movie.py <surface.pvd> <out.mp4> [--fps 12] [--size 800x600] [--every K]
-                     [--from T0] [--to T1] [--hold SECONDS] [render options]
+Usage: python3 -m membrane_flow movie <surface.pvd> <out.mp4> [--fps 12] [--size 800x600] [--every K]
+                                            [--from T0] [--to T1] [--hold SECONDS] [render options]
 
 One frame per snapshot (or per K-th snapshot), each with its time stamp. The camera and the
 colour range are the same in every frame: the camera frames all snapshots together, and the
 colour range is [-1, 1] for phi (else the range over all snapshots, or --range). The render
 options (--field, --view, --elev/--azim, --views, --tile, --projection, --cmap, --label, ...) are
-those of render_surface.py. Headless: without a DISPLAY the script starts its own Xvfb."""
+those of the render command. Headless: without a DISPLAY the command starts its own Xvfb."""
 import argparse
 import os
 import shutil
@@ -17,13 +17,13 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from render_surface import (SurfaceRenderer, add_common_options, default_range, field_values,  # noqa: E402
-                            grid_time, options_from, read_grid, snapshots, surface_polydata)
-from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from .render import (SurfaceRenderer, add_common_options, default_range, field_values, grid_time, options_from,
+                     read_grid, snapshots, surface_polydata)
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('input', help='surface.pvd of a run')
     parser.add_argument('output', help='MP4 file to write')
@@ -34,11 +34,11 @@ def main():
     parser.add_argument('--hold', type=float, default=1.0, help='show the last frame this many seconds longer (default 1)')
     parser.add_argument('--crf', type=int, default=23, help='H.264 quality, lower is better and larger (default 23)')
     add_common_options(parser)
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     if not os.path.isfile(args.input):
         parser.error(f'{args.input} does not exist (the surface.pvd of a run)')
     if not args.input.endswith('.pvd'):
-        raise SystemExit('make_movie.py needs a PVD series (surface.pvd)')
+        raise SystemExit('membrane_flow movie needs a PVD series (surface.pvd)')
     if shutil.which('ffmpeg') is None:
         raise SystemExit('ffmpeg not found: install it (scripts/install_dependencies.sh)')
     if args.fps <= 0 or args.every < 1:

@@ -1,24 +1,21 @@
-#!/usr/bin/python3
 """Why the 7.1 patch experiment ends as an incomplete bud (docs/experiments.md): the paper's input
 (experiments/7.1-sorting-patch.prm) with one change each - time, resolution, line tension,
 spontaneous curvature, and the amplitude of the patch, which the paper does not give.
 
-Usage: study_7_1.py [--exe build/membrane-flow] [--output results/studies/7.1-variants]
+Usage (from the repository's top directory):
+  python3 -m membrane_flow study-7.1 [--exe build/membrane-flow] [--output results/studies/7.1-variants]
 
 Each variant runs into <output>/<name> unless its summary.json is there already (so the study
 resumes after a kill); then the table of docs/experiments.md is printed. Every run is written
 without VTU output, one at a time, with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1."""
 import argparse
-import json
 import os
-import subprocess
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-from membrane_workflow.statistics import load_statistics  # noqa: E402
+from .. import launch
+from ..run import load_statistics, load_summary
 
-BASE = os.path.join(HERE, '..', 'experiments', '7.1-sorting-patch.prm')
+BASE = os.path.join('experiments', '7.1-sorting-patch.prm')
 # name, what changes, --set entries
 VARIANTS = [
     ('paper', 'the paper\'s parameters (amplitude 0.1, sigma = 450, t = 3)', []),
@@ -37,12 +34,13 @@ VARIANTS = [
 ]
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    parser.add_argument('--exe', default=os.path.join(HERE, '..', 'build', 'membrane-flow'))
+    parser.add_argument('--exe', help='the program (default: see membrane_flow.launch.find_executable)')
     parser.add_argument('--output', default='results/studies/7.1-variants')
-    args = parser.parse_args()
-    env = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+    args = parser.parse_args(argv)
+    args.exe = launch.find_executable(args.exe)
+    env = launch.environment()
     rows = []
     for name, change, sets in VARIANTS:
         run = os.path.join(args.output, name)
@@ -52,11 +50,10 @@ def main():
             for s in sets:
                 command += ['--set', s]
             print(f'running {name}', flush=True)
-            if subprocess.run(command, env=env).returncode != 0:
+            if launch.run(command, env=env)[0] != 0:
                 print(f'{name}: the run failed (see {run}/log)')
                 continue
-        with open(os.path.join(run, 'summary.json')) as f:
-            s = json.load(f)
+        s = load_summary(run)
         first = load_statistics(run)
         area = s['area']
         rows.append(f"| {change} | {area:.3f} | {area - s['domain_area']:.3f} | {s['time']:g} | {s['energy']:.2f} | "

@@ -1,13 +1,12 @@
-#!/usr/bin/python3
 """Write docs/branches.md and docs/images/studies/branches.png: both branches of the 7.3 budding
 setup in line tension sigma, on the uniform 32 x 32 mesh and with one level of local refinement
 at the interface (the setting that reproduces uniform 64 x 64, docs/mesh-convergence.md), from
-the runs of scripts/continuation.py follow (the commands are in the page); and
+the runs of `/usr/bin/python3 -m membrane_flow continuation follow` (the commands are in the page); and
 docs/branches-small-domain.md with docs/images/studies/branches-small-domain.png, the same for the
 smaller domain of 7.4 D (<studies>/branches-7.4D-adaptive1) against the 7.3 result. Each page is
 written when its runs are present.
 
-Usage: make_branch_docs.py [results/studies] [docs]
+Usage (from the repository's top directory): python3 -m membrane_flow branch-docs [results/studies] [docs]
 
 Per mesh it reads <studies>/<mesh>/down and <studies>/<mesh>/up (the protruding branch followed
 down from sigma = 2000, the flat-start branch followed up from 600) and, when present, further
@@ -19,20 +18,18 @@ error, it is rebuilt from the summary.json of its finished runs and the page say
 The points of one direction are merged by value: the first follow that ran a value keeps it,
 unless a later follow relaxed that same state further (started from the state at that value).
 The branch is the class of the main follow (--classify protrusion:0.95); its turning point is
-turning_point() of membrane_workflow/continuation.py on [last value on the branch, nearest value
+turning_point() of membrane_flow/workflow/continuation.py on [last value on the branch, nearest value
 off it beyond], and the energy crossing is crossing() of the two merged branches, as
 continuation.py compare computes them."""
-import json
 import math
 import os
 import re
 import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-from membrane_workflow.critical import classifier  # noqa: E402
-from membrane_workflow.continuation import crossing, follow_branch, turning_point  # noqa: E402
-from membrane_workflow.statistics import load_statistics  # noqa: E402
+from .. import run as reader
+from ..run import load_statistics
+from ..workflow.continuation import crossing, follow_branch, turning_point
+from ..workflow.critical import classifier
 
 CLASSIFY = 'protrusion:0.95'
 MESHES = [  # result directory, refinement level, label, colour in the figure
@@ -54,8 +51,7 @@ COMPLETE_NECK = 0.4    # neck_ratio below which the simulator calls a bud comple
 def read_json(path):
     if not os.path.exists(path):
         return None
-    with open(path) as f:
-        return json.load(f)
+    return reader.read_json(path)
 
 
 def finished(summary):
@@ -113,7 +109,7 @@ def read_follow(directory, direction, studies):
 
 def merge(follows, direction):
     """The branch of one direction from its follows (the main follow first), in the form of
-    membrane_workflow/continuation.py: points on the branch in the order followed, left_at the
+    membrane_flow/workflow/continuation.py: points on the branch in the order followed, left_at the
     nearest state off it beyond the last one; 'inside' lists states off the branch between its points."""
     main = follows[0]['class']
     by_value = {}
@@ -138,7 +134,7 @@ def merge(follows, direction):
 
 
 def load_mesh(studies, directory):
-    """{'down': branch, 'up': branch} of one mesh, from <studies>/<directory> (also used by make_study_docs.py)."""
+    """{'down': branch, 'up': branch} of one mesh, from <studies>/<directory> (also used by the study-docs command)."""
     branches = {}
     for direction in ('down', 'up'):
         follows = []
@@ -165,7 +161,7 @@ def command(follow):
     options = f"--classify {r['classify']}" + (f' --max-time {max_time:.4g}' if max_time else '') + \
         ('' if r['plateau'] == 1e-3 else f" --plateau {r['plateau']:g}")
     sets = ' '.join(f'--set "{s}"' for s in r['set'])
-    return (f"scripts/continuation.py follow {r['base']} \"{r['parameter']}\" {' '.join(f'{v:g}' for v in r['values'])}"
+    return (f"/usr/bin/python3 -m membrane_flow continuation follow {r['base']} \"{r['parameter']}\" {' '.join(f'{v:g}' for v in r['values'])}"
             f"{start} \\\n    {options} --output {out} \\\n    {sets}")
 
 
@@ -266,7 +262,7 @@ def mesh_section(directory, level, label, branches, cross, heading=None, fence=N
     heading = heading or f'## {label[0].upper() + label[1:]} (`Mesh/Maximum refinement level={level}`)'
     lines = [heading + '\n',
              f'```{fence}\n' + '\n'.join(command(f) for f in follows) +
-             (f'\nscripts/continuation.py compare results/studies/{directory}/down results/studies/{directory}/up'
+             (f'\n/usr/bin/python3 -m membrane_flow continuation compare results/studies/{directory}/down results/studies/{directory}/up'
               if len(branches) == 2 else '') + '\n```\n']
     if any('fine' in f['directory'] for f in follows):
         lines.append('The follows with `--start` fill in values between the points of the main follows, each from '
@@ -460,11 +456,11 @@ def small_domain_page(studies, docs):
              'The paper\'s Fig. 7.4 D: a smaller domain (`integral phi ds = -0.95`, '
              '[experiments/7.4D-small-domain.prm](../experiments/7.4D-small-domain.prm)) does not bud at a line '
              'tension where the larger one of 7.3 / 7.4 C (`-0.85`) does. The same analysis as for 7.3 '
-             '([branches.md](branches.md)), shorter: both branches followed in sigma by `scripts/continuation.py` on '
+             '([branches.md](branches.md)), shorter: both branches followed in sigma by `/usr/bin/python3 -m membrane_flow continuation` on '
              'the mesh setting of the 7.3 number to quote (one level of local refinement at the interface), the '
              'protruding branch down from sigma = 2000 and the flat-start branch up from 600, with the protrusion '
              'class 0.95, the plateau tolerance 1e-3 per unit time and at most 3 time units per value. '
-             'This page is written by `scripts/make_branch_docs.py`.\n',
+             'This page is written by `/usr/bin/python3 -m membrane_flow branch-docs`.\n',
              '![both branches of 7.4 D](images/studies/branches-small-domain.png)\n',
              'Top: total energy at each sigma (circles, solid: the protruding branch followed down; squares, dashed: '
              'the flat-start branch followed up; open markers: not at plateau; crosses: states that have left their '
@@ -513,9 +509,13 @@ def small_domain_page(studies, docs):
     return True
 
 
-def main():
-    studies = sys.argv[1] if len(sys.argv) > 1 else 'results/studies'
-    docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] in (['-h'], ['--help']):
+        print('usage: python3 -m membrane_flow branch-docs [results/studies] [docs]\n\n' + __doc__)
+        return 0
+    studies = argv[0] if len(argv) > 0 else 'results/studies'
+    docs = argv[1] if len(argv) > 1 else 'docs'
     images = os.path.join(docs, 'images', 'studies')
     small = small_domain_page(studies, docs)
     results = []
@@ -541,7 +541,7 @@ def main():
     lines = ['# The critical line tension of the 7.3 setup: both branches\n',
              'The 7.3 budding setup ([experiments/7.3-budding.prm](../experiments/7.3-budding.prm)) is bistable over a '
              'range of line tensions sigma: a flat start that stays an incomplete bud and a protruding (budded) '
-             'state are both equilibria. `scripts/continuation.py` ([workflow.md](workflow.md)) follows each branch '
+             'state are both equilibria. `/usr/bin/python3 -m membrane_flow continuation` ([workflow.md](workflow.md)) follows each branch '
              'in sigma: the protruding branch down from sigma = 2000, the flat-start branch up from 600. Each value '
              'relaxes from the previous one\'s equilibrium until the relative energy rate falls below 1e-3 per unit '
              'time, or for at most 3 time units ("at plateau: no"). The class is that of the protrusion threshold '
@@ -559,7 +559,7 @@ def main():
              'The runs use `--set "Mesh/Maximum refinement level=0"` (the paper\'s uniform 32 x 32 mesh) and `=1` '
              '(one level of local refinement at the interface, which reproduces the uniform 64 x 64 energy within '
              '0.1 % at sigma = 630 and 1000, [mesh-convergence.md](mesh-convergence.md)), one run at a time with '
-             '`OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1`. This page is written by `scripts/make_branch_docs.py`.\n',
+             '`OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1`. This page is written by `/usr/bin/python3 -m membrane_flow branch-docs`.\n',
              '![both branches](images/studies/branches.png)\n',
              'Top: total energy at each sigma (circles, solid: the protruding branch followed down; squares, dashed: '
              'the flat-start branch followed up; open markers: not at plateau; crosses: states that have left their '

@@ -1,21 +1,21 @@
-#!/usr/bin/python3
 """Write docs/experiments.md and its pictures from finished experiment runs.
 
 For each experiment in EXPERIMENTS whose results/<name>/summary.json exists:
 a picture of the final surface coloured by phi, the history plot (energy,
 conservation, bud observables), and a table row with the measured outcome.
-Usage (after scripts/run_experiments.sh): make_experiment_docs.py [results-dir] [docs-dir]"""
-import json
+The page starts with experiments_header.md (next to this file).
+Usage (after scripts/run_experiments.sh; from the repository's top directory):
+  python3 -m membrane_flow experiment-docs [results-dir] [docs-dir]"""
 import os
-import subprocess
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from membrane_workflow.experiment_runs import command  # noqa: E402
+from membrane_flow.pictures import history, render
+from membrane_flow.run import load_summary
+from membrane_flow.workflow.experiment_runs import command
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 results = sys.argv[1] if len(sys.argv) > 1 else 'results'
-docs = sys.argv[2] if len(sys.argv) > 2 else os.path.join(HERE, '..', 'docs')
+docs = sys.argv[2] if len(sys.argv) > 2 else 'docs'
 images = os.path.join(docs, 'images', 'experiments')
 os.makedirs(images, exist_ok=True)
 
@@ -41,13 +41,11 @@ for name, paper, elev in EXPERIMENTS:
     if not os.path.exists(summary_path):
         print(f'skipping {name}: no {summary_path}')
         continue
-    with open(summary_path) as f:
-        s = json.load(f)
+    s = load_summary(run)
     shape_png, history_png = f'{name}.png', f'{name}-history.png'
-    subprocess.run(['/usr/bin/python3', os.path.join(HERE, 'render_surface.py'), os.path.join(run, 'surface.pvd'),
-                    os.path.join(images, shape_png), '--size', '640x480', '--elev', str(elev)], check=True)
-    subprocess.run(['/usr/bin/python3', os.path.join(HERE, 'plot_history.py'), run, '-o',
-                    os.path.join(images, history_png), '--title', name], check=True)
+    render.main([os.path.join(run, 'surface.pvd'), os.path.join(images, shape_png), '--size', '640x480',
+                 '--elev', str(elev)])
+    history.main([run, '-o', os.path.join(images, history_png), '--title', name])
     direction = 'up' if s['bud_direction'] > 0 else 'down'
     rows.append(f"| {name} | {paper} | **{s['outcome']}** ({direction}) | {s['time']:.3g} | {s['steps']} "
                 f"({s['rejected_steps']}) | {s['energy']:.4g} | {s['bud_height']:.3f} | {s['neck_radius']:.3f} | "

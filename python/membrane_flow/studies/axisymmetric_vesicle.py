@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Independent reference for closed vesicles (docs/vesicles.md): bending energies of
 axisymmetric shapes with up-down symmetry, by constrained minimization over surfaces of
 revolution (no finite elements, no shared code with the simulator).
@@ -11,10 +10,12 @@ axis (x); x = r cos t, y = r sin t, revolved about x. With s' = |(x', y')|:
 Integrals by Gauss-Legendre quadrature in t (exact to round-off for these smooth integrands).
 
 Usage:
-  axisymmetric_vesicle.py prolate V [--modes N]   minimal energy of a prolate of reduced volume V
-  axisymmetric_vesicle.py ellipsoid A B           energy of the spheroid with semi-axes A (axis), B, B
-  axisymmetric_vesicle.py test                    self-tests (sphere: 1; spheroid against this code;
-                                                  the prolate branch against Seifert-Berndl-Lipowsky)"""
+  python3 -m membrane_flow axisymmetric-vesicle prolate V [--modes N]
+      minimal energy of a prolate of reduced volume V
+  python3 -m membrane_flow axisymmetric-vesicle ellipsoid A B
+      energy of the spheroid with semi-axes A (axis), B, B
+  python3 -m membrane_flow axisymmetric-vesicle test
+      self-tests (sphere: 1; spheroid against this code; the prolate branch against Seifert-Berndl-Lipowsky)"""
 import sys
 
 import numpy as np
@@ -115,13 +116,25 @@ def test():
     return ok
 
 
-if __name__ == "__main__":
-    if sys.argv[1] == "test":
-        sys.exit(0 if test() else 1)
-    if sys.argv[1] == "ellipsoid":
-        e, v = spheroid(float(sys.argv[2]), float(sys.argv[3]))
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv[:1] in (['-h'], ['--help']):
+        print('usage:' + __doc__.split('Usage:')[1])
+        return 0
+    if not argv or argv[0] not in ('test', 'ellipsoid', 'prolate'):
+        print('usage:' + __doc__.split('Usage:')[1], file=sys.stderr)
+        return 2
+    if argv[0] == "test":
+        return 0 if test() else 1
+    if argv[0] == "ellipsoid":
+        e, v = spheroid(float(argv[1]), float(argv[2]))
         print(f"energy / (8 pi) = {e:.8f}, reduced volume {v:.8f}")
     else:
-        modes = int(sys.argv[sys.argv.index("--modes") + 1]) if "--modes" in sys.argv else 10
-        e, v, success = prolate(float(sys.argv[2]), modes)
+        modes = int(argv[argv.index("--modes") + 1]) if "--modes" in argv else 10
+        e, v, success = prolate(float(argv[1]), modes)
         print(f"energy / (8 pi) = {e:.8f}, reduced volume {v:.8f}, converged: {success}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

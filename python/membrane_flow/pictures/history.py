@@ -3,7 +3,7 @@
 energy and its terms, the conservation errors (area and integral phi ds) and
 the bud observables (height, neck radius, domain protrusion) against time.
 The legends sit below the panels, clear of the curves.
-Usage: plot_history.py <run-dir> [<run-dir> ...] -o out.png [--labels a,b] [--title T]"""
+Usage: python3 -m membrane_flow plot-history <run-dir> [<run-dir> ...] -o out.png [--labels a,b] [--title T]"""
 import argparse
 import os
 
@@ -13,21 +13,16 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.ticker import MaxNLocator
 
-
-def load(run):
-    with open(os.path.join(run, 'statistics.txt')) as f:
-        names = f.readline().lstrip('#').split()
-        data = np.atleast_2d(np.loadtxt(f))
-    return {n: data[:, i] for i, n in enumerate(names)}
+from ..run import load_statistics as load
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument('runs', nargs='+')
     parser.add_argument('-o', '--output', required=True)
     parser.add_argument('--labels')
     parser.add_argument('--title', default='')
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     labels = args.labels.split(',') if args.labels else [os.path.basename(r.rstrip('/')) for r in args.runs]
 
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))

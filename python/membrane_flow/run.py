@@ -1,4 +1,7 @@
-"""Reading what a run of membrane-flow wrote into its output directory.
+"""Reading what a run of membrane-flow wrote into its output directory: the one reader of
+statistics.txt, summary.json, run_info.json, parameters.prm, checkpoints' times, the PVD
+series and its VTU files, used by the workflow, the studies, the pictures and the docs
+generators of the package.
 
 Pure Python (numpy; VTK's Python module for the fields of a snapshot): it needs neither
 the compiled part of membrane_flow nor MPI.
@@ -32,16 +35,55 @@ def read_statistics(path):
     return {n: data[:, i] for i, n in enumerate(names)}
 
 
+class FileError(ValueError):
+    """A file that cannot be read, or malformed JSON, with the file, line and column."""
+
+
+def read_json(path, what=None):
+    """A JSON file (summary.json, run_info.json, a sweep's case.json, a branch.json, ...).
+    With `what` (e.g. 'sweep file'), a hand-written file: any problem is a FileError naming
+    the file, and the line and column of a syntax error or a key given twice in one object."""
+    if what is None:
+        with open(path) as f:
+            return json.load(f)
+    try:
+        with open(path) as f:
+            text = f.read()
+    except OSError as e:
+        raise FileError(f'cannot read {what} {path}: {e.strerror}') from None
+
+    def no_duplicates(pairs):
+        seen = {}
+        for key, value in pairs:
+            if key in seen:
+                raise FileError(f'{path}: malformed {what}: the key {key!r} appears twice in one object')
+            seen[key] = value
+        return seen
+    try:
+        return json.loads(text, object_pairs_hook=no_duplicates)
+    except json.JSONDecodeError as e:
+        raise FileError(f'{path}:{e.lineno}:{e.colno}: malformed JSON in {what}: {e.msg}') from None
+
+
 def load_summary(run_dir):
     """summary.json as a dict."""
-    with open(os.path.join(run_dir, 'summary.json')) as f:
-        return json.load(f)
+    return read_json(os.path.join(run_dir, 'summary.json'))
 
 
 def load_run_info(run_dir):
     """run_info.json as a dict."""
-    with open(os.path.join(run_dir, 'run_info.json')) as f:
-        return json.load(f)
+    return read_json(os.path.join(run_dir, 'run_info.json'))
+
+
+def checkpoint_time(path):
+    """The time of a checkpoint file of membrane-flow (ValueError if it records none)."""
+    with open(path) as f:
+        for line in f:
+            if line.startswith('time '):
+                return float(line.split()[1])
+            if line.startswith('parameters'):
+                break
+    raise ValueError(f'{path} is not a checkpoint of membrane-flow (no time)')
 
 
 def parse_prm(text):
@@ -68,11 +110,40 @@ def load_parameters(run_dir):
         return parse_prm(f.read())
 
 
+def read_pvd(path):
+    """The snapshots a PVD file lists, [(t, path of the VTU), ...] in order of time; the paths
+    are those of the PVD joined with its directory."""
+    root = ET.parse(path).getroot()
+    series = [(float(d.get('timestep')), os.path.join(os.path.dirname(path), d.get('file')))
+              for d in root.iter('DataSet')]
+    return sorted(series, key=lambda s: s[0])
+
+
 def load_snapshots(run_dir, pvd='surface.pvd'):
     """The snapshots listed in the PVD file as [(t, absolute path of the VTU), ...]."""
-    root = ET.parse(os.path.join(run_dir, pvd)).getroot()
-    return [(float(d.get('timestep')), os.path.join(os.path.abspath(run_dir), d.get('file')))
-            for d in root.iter('DataSet')]
+    return read_pvd(os.path.join(os.path.abspath(run_dir), pvd))
+
+
+def read_grid(path):
+    """The VTK unstructured grid of a .vtu or .pvtu file (FileNotFoundError, or ValueError
+    when VTK reads no cells from it)."""
+    from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
+
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f"no snapshot file <{path}>")
+    reader = vtkXMLPUnstructuredGridReader() if path.endswith('.pvtu') else vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    grid = reader.GetOutput()
+    if grid is None or grid.GetNumberOfPoints() == 0 or grid.GetNumberOfCells() == 0:
+        raise ValueError(f"<{path}> holds no unstructured grid that VTK can read")
+    return grid
+
+
+def grid_time(grid, fallback=None):
+    """The TIME field data of a grid (written by the simulator, single precision), else `fallback`."""
+    array = grid.GetFieldData().GetArray('TIME')
+    return float(array.GetTuple1(0)) if array is not None and array.GetNumberOfTuples() else fallback
 
 
 def read_vtu(path):
@@ -81,17 +152,9 @@ def read_vtu(path):
     Returns a dict: 'points' (n x 3), 'cells' (n_cells x vertices per cell, indices into
     points), 'point_data' {name: array}, 'cell_data' {name: array}, and 'time' if the file
     records one (VTK field data TIME, single precision in deal.II's files)."""
-    import vtk
-    from vtk.util.numpy_support import vtk_to_numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
 
-    if not os.path.isfile(path):
-        raise FileNotFoundError(f"no snapshot file <{path}>")
-    reader = vtk.vtkXMLPUnstructuredGridReader() if path.endswith('.pvtu') else vtk.vtkXMLUnstructuredGridReader()
-    reader.SetFileName(path)
-    reader.Update()
-    grid = reader.GetOutput()
-    if grid is None or grid.GetNumberOfPoints() == 0:
-        raise ValueError(f"<{path}> holds no unstructured grid that VTK can read")
+    grid = read_grid(path)
     points = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
     n_cells = grid.GetNumberOfCells()
     connectivity = vtk_to_numpy(grid.GetCells().GetConnectivityArray()).astype(np.int64)
@@ -108,9 +171,9 @@ def read_vtu(path):
 
     result = {'points': points, 'cells': cells, 'point_data': arrays(grid.GetPointData()),
               'cell_data': arrays(grid.GetCellData())}
-    field_data = arrays(grid.GetFieldData())
-    if 'TIME' in field_data:
-        result['time'] = float(np.ravel(field_data['TIME'])[0])
+    time = grid_time(grid)
+    if time is not None:
+        result['time'] = time
     return result
 
 

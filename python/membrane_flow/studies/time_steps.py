@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Convergence in the time step: the 7.3 setup at sigma = 1500 on the uniform 32 x 32 mesh, run to
 t = 1 with tau capped at decreasing values and with tau set by the accuracy tolerance, with grid
 control at a rate per unit time (the default) and, for contrast, with the paper's fixed weight per
@@ -9,28 +8,29 @@ docs/time-step-accuracy.md: per case the accepted and rejected steps, the energy
 t = 1, the budding time T_min, their differences from the reference (the smallest cap with the
 rate), and the observed order of the capped runs.
 
-Usage: time_step_study.py [--exe build/membrane-flow] [--output results/studies/time-steps] [--no-docs]"""
+Run from the repository's top directory.
+Usage: python3 -m membrane_flow time-step-study [--exe build/membrane-flow] [--output results/studies/time-steps]
+                                                [--no-docs]"""
 import argparse
-import json
 import math
 import os
 import re
-import subprocess
 import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from membrane_workflow.budding_time import budding_time_of_run  # noqa: E402
-from membrane_workflow.statistics import load_statistics  # noqa: E402
+from membrane_flow import launch
+from membrane_flow.run import load_statistics, load_summary
+from membrane_flow.workflow.budding_time import budding_time_of_run
 
-root = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..')
+root = '.'  # the repository's top directory
 parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-parser.add_argument('--exe', default=os.path.join(root, 'build', 'membrane-flow'))
+parser.add_argument('--exe', help='the program (default: see membrane_flow.launch.find_executable)')
 parser.add_argument('--output', default=os.path.join(root, 'results', 'studies', 'time-steps'))
 parser.add_argument('--end-time', type=float, default=1.0)
 parser.add_argument('--no-docs', action='store_true', help='run the cases only')
 args = parser.parse_args()
+args.exe = launch.find_executable(args.exe)
 
 CAPS = (1e-2, 5e-3, 2.5e-3, 1.25e-3)
 TOLERANCES = (0.1, 0.01, 0.003, 0.001, 0.0003)
@@ -55,8 +55,7 @@ def made_as_asked(out, rate, start):
     try:
         with open(os.path.join(out, 'parameters.prm')) as f:
             text = f.read()
-        with open(os.path.join(out, 'summary.json')) as f:
-            stop = json.load(f).get('stop_reason', '')
+        stop = load_summary(out).get('stop_reason', '')
     except OSError:
         return False
     entry = re.search(r'set Grid control rate\s*=\s*(\S+)', text)
@@ -80,12 +79,10 @@ for tolerance, cap, rate, start in cases:
                    '--set', f'Output/Directory={out}', *STARTS[start],
                    os.path.join(root, 'experiments', '7.3-budding.prm')]
         print(' '.join(command), flush=True)
-        result = subprocess.run(command, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
-                                env=dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1'))
+        result = launch.output(command, env=launch.environment())
         if result.returncode == 1:
             sys.exit(f'{args.exe} refused the case: {result.stderr.strip()}')
-    with open(os.path.join(out, 'summary.json')) as f:
-        summary = json.load(f)
+    summary = load_summary(out)
     stats = load_statistics(out)
     time, energy = np.asarray(stats['time']), np.asarray(stats['energy'])
     finished = summary.get('stop_reason') == 'end time'
@@ -143,7 +140,7 @@ lines = ['# Time-step convergence and accuracy-based time steps', '',
          "start); and, for contrast, the paper's fixed grid-control weight per step (rate 0, the default). "
          'Differences are relative to the reference, the smallest cap from the resolved start. "Held" counts the '
          'accepted steps whose estimate stayed above the tolerance without falling with tau (summary.json '
-         '`irreducible_error_steps`). Regenerate with `scripts/time_step_study.py` (about 15 minutes on one core).',
+         '`irreducible_error_steps`). Regenerate with `/usr/bin/python3 -m membrane_flow time-step-study` (about 15 minutes on one core).',
          '', f'| start | grid control | tolerance | maximum tau | steps | rejected | held | '
          f'energy at t = {0.5 * args.end_time:g} | energy at t = {args.end_time:g} | '
          f'difference at t = {args.end_time:g} | T_min | difference in T_min | protrusion difference at the '
@@ -279,7 +276,7 @@ text.append('**Grid control at a rate with long steps.** A step with r tau above
 lines += [''] + [t + '\n' for t in text]
 lines += ['T_min is the first time the domain protrusion reaches 0.95 or, without that, the end of the '
           'last window in which the relative energy rate exceeds 1e-2 per unit time '
-          '(`scripts/membrane_workflow/budding_time.py`). The protrusion crosses 0.95 slowly (1 % of protrusion '
+          '(`membrane_flow/workflow/budding_time.py`). The protrusion crosses 0.95 slowly (1 % of protrusion '
           'is about 0.02 in time), so T_min scatters more than the energy.']
 text = '\n'.join(lines) + '\n'
 with open(os.path.join(root, 'docs', 'time-step-accuracy.md'), 'w') as f:

@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Mesh-convergence study of the 7.3 budding setup: uniform meshes against local refinement.
 
 For each line tension sigma (default 630 and 1000) the 7.3 setup (experiments/7.3-budding.prm,
@@ -10,7 +9,7 @@ end time 3.1 unless --end-time) runs on
 VTU output and checkpoints are off; every case runs in its own directory
 <output>/s<sigma>/<case>/ with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1.
 
-A case is finished when its summary.json exists: started again, the script skips finished
+A case is finished when its summary.json exists: started again, the command skips finished
 cases and reruns the others from scratch (an interrupted, killed or timed-out case leaves no
 summary.json). A run that exits with code 2 (blow-up) writes its summary with "failed": true;
 it counts as finished and is listed as failed.
@@ -20,7 +19,9 @@ docs/mesh-convergence.md (tables, conclusions drawn from the numbers) and the fi
 docs/images/mesh-convergence.png (final energy against number of cells) and
 docs/images/mesh-convergence-history.png (energy and cells against time).
 
-Usage: scripts/mesh_convergence.py [--workers 2] [--exe build/membrane-flow] [--levels 1,2]
+Run from the repository's top directory (the runs, the page and its figures are written there).
+
+Usage: python3 -m membrane_flow mesh-convergence [--workers 2] [--exe build/membrane-flow] [--levels 1,2]
            [--uniform 32,48,64] [--sigmas 630,1000] [--end-time T] [--timeout SECONDS] [--report-only]
 """
 import argparse
@@ -37,9 +38,10 @@ from concurrent.futures import ThreadPoolExecutor, as_completed
 
 import numpy as np
 
-ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..'))
-sys.path.insert(0, os.path.join(ROOT, 'scripts'))
-from membrane_workflow.statistics import load_statistics  # noqa: E402
+from .. import launch, run
+from ..run import load_statistics
+
+ROOT = os.getcwd()  # the repository's top directory: the input file, the runs and the page are relative to it
 
 BASE = 'experiments/7.3-budding.prm'
 DEFAULT_OUTPUT = 'results/studies/mesh-convergence'
@@ -135,7 +137,7 @@ class Runner:
                     os.remove(path)
         os.makedirs(case.dir, exist_ok=True)
         command = case.command(self.exe, self.end_time, self.overwrite)
-        env = dict(os.environ, OMP_NUM_THREADS='1', OPENBLAS_NUM_THREADS='1')
+        env = launch.environment()
         write_json(os.path.join(case.dir, 'case.json'),
                    {'command': command, 'shell': ' '.join(shlex.quote(c) for c in command),
                     'environment': 'OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1', 'cwd': ROOT})
@@ -144,8 +146,7 @@ class Runner:
         # The run's own log.txt: the simulator recognizes it as its stdout and does not write it twice
         # (any other file would be foreign to the run directory, which the simulator refuses).
         with open(os.path.join(case.dir, 'log.txt'), 'w') as log:
-            process = subprocess.Popen(command, cwd=ROOT, env=env, stdout=log, stderr=subprocess.STDOUT,
-                                       stdin=subprocess.DEVNULL, start_new_session=True)
+            process = launch.start(command, cwd=ROOT, env=env, stdout=log, stderr=subprocess.STDOUT)
             with self.lock:
                 self.running.add(process)
             timer = None
@@ -194,10 +195,7 @@ def supports_overwrite(exe):
 
 
 def terminate(process):
-    try:
-        os.killpg(process.pid, signal.SIGTERM)
-    except (ProcessLookupError, PermissionError):
-        pass
+    launch.kill_group(process, signal.SIGTERM)
 
 
 def write_json(path, data):
@@ -210,8 +208,7 @@ def write_json(path, data):
 
 def read_json(path):
     try:
-        with open(path) as f:
-            return json.load(f)
+        return run.read_json(path)
     except (OSError, ValueError):
         return None
 
@@ -689,10 +686,10 @@ def write_report(results, sigmas, levels, command, end_time, exe):
 
 # ----------------------------------------------------------------------------------------------
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('--workers', type=int, default=2, help='cases run at the same time (default 2)')
-    parser.add_argument('--exe', default=os.path.join(ROOT, 'build', 'membrane-flow'))
+    parser.add_argument('--exe', help='the program (default: see membrane_flow.launch.find_executable)')
     parser.add_argument('--levels', default='1,2', help='adaptive refinement levels, from 1,2,3 (default 1,2)')
     parser.add_argument('--sigmas', default='630,1000', help='line tensions (default 630,1000)')
     parser.add_argument('--uniform', default='32,48,64',
@@ -705,7 +702,7 @@ def main():
                         help='wall seconds after which a case is killed and reported as timed out (0: none; '
                              'default 7200)')
     parser.add_argument('--report-only', action='store_true', help='run nothing; rewrite the report from what exists')
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     levels = sorted({int(x) for x in args.levels.split(',') if x.strip()})
     if any(l not in CELLS_PER_XI for l in levels):
         parser.error('--levels takes levels from 1, 2, 3')
@@ -716,13 +713,13 @@ def main():
         parser.error('--uniform takes at least three mesh sizes, e.g. 32,48,64')
     if args.workers < 1:
         parser.error('--workers must be at least 1')
-    exe = os.path.abspath(args.exe)
+    exe = os.path.abspath(launch.find_executable(args.exe))
     output = args.output if os.path.isabs(args.output) else os.path.relpath(os.path.join(ROOT, args.output), ROOT)
     if args.end_time is not None and args.end_time != FILE_END_TIME and args.output == DEFAULT_OUTPUT:
         output = os.path.join(DEFAULT_OUTPUT, f'end-{args.end_time:g}')
     cases = make_cases(sigmas, levels, output)
 
-    command = 'scripts/mesh_convergence.py'
+    command = '/usr/bin/python3 -m membrane_flow mesh-convergence'
     if args.workers != 2:
         command += f' --workers {args.workers}'
     # the page names the command a user runs (the default executable), whichever binary made the numbers
@@ -738,7 +735,7 @@ def main():
     completed = True
     if not args.report_only:
         if not os.access(exe, os.X_OK):
-            print(f'mesh_convergence.py: error: {exe} is not an executable', file=sys.stderr)
+            print(f'membrane_flow mesh-convergence: error: {exe} is not an executable', file=sys.stderr)
             return 1
         completed = run_cases(cases, Runner(exe, args.end_time, args.timeout), args.workers)
     results = [read_case(c) for c in cases]

@@ -48,7 +48,26 @@ def budding_time(time, energy, stop_reason='', rate=1e-2, window=0.1, protrusion
 
 
 def budding_time_of_run(run_dir, **kwargs):
-    from .statistics import load_statistics, load_summary
+    from ..run import load_statistics, load_summary
     stats, summary = load_statistics(run_dir), load_summary(run_dir)
     return budding_time(stats['time'], stats['energy'], summary.get('stop_reason', ''),
                         protrusion=stats.get('domain_protrusion'), **kwargs)
+
+
+# -- the command line: python3 -m membrane_flow budding-time -----------------------------------
+
+def main(argv=None):
+    import argparse
+    parser = argparse.ArgumentParser(description='The budding time T_min of finished runs (the definition of '
+                                     'membrane_flow/workflow/budding_time.py, docs/workflow.md): one line per run, '
+                                     '"-" where the run ended before the equilibrium began.')
+    parser.add_argument('runs', nargs='+', help='output directories of runs')
+    parser.add_argument('--rate', type=float, default=1e-2, help='relative energy rate per unit time (default 1e-2)')
+    parser.add_argument('--window', type=float, default=0.1, help='window of the rate in time units (default 0.1)')
+    parser.add_argument('--complete', type=float, default=0.95,
+                        help='domain protrusion of a complete bud (default 0.95)')
+    args = parser.parse_args(argv)
+    for run in args.runs:
+        t = budding_time_of_run(run, rate=args.rate, window=args.window, complete=args.complete)
+        print(f"{run}\t{'-' if t is None else f'{t:.6g}'}")
+    return 0

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Plot an observable of a sweep against the varied parameter, from its results.csv.
-Usage: plot_study.py <results.csv> <parameter column> [--y T_min] [--logy] [--logx] -o out.png
+Usage: python3 -m membrane_flow plot-study <results.csv> <parameter column> [--y T_min] [--logy] [--logx] -o out.png
 Several CSVs can be given (comma-separated) with matching parameter columns.
 Runs where the observable is undefined (T_min of a run that ended before equilibrium) are
 listed in the figure and on stderr; if it is undefined in every run, the figure says so
@@ -14,7 +14,7 @@ matplotlib.use('Agg')
 import matplotlib.pyplot as plt
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument('csv')
     parser.add_argument('x')
@@ -23,7 +23,7 @@ def main():
     parser.add_argument('--logx', action='store_true')
     parser.add_argument('--title', default='')
     parser.add_argument('-o', '--output', required=True)
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     fig, ax = plt.subplots(figsize=(5, 3.8), dpi=90)
     undefined = []  # (x, outcome) of the runs without a value of y
     plotted = 0

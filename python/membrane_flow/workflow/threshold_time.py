@@ -7,11 +7,10 @@ T <= T_max at once: the runs that have crossed by T lie above it, the others bel
 
 brackets() is pure (tested in tests/test_workflow.py); section() reads a sweep's case
 directories and writes the part of docs/studies.md."""
-import json
 import math
 import os
 
-from .statistics import load_statistics, load_summary
+from ..run import load_statistics, load_summary, read_json
 
 THRESHOLD = 0.95
 
@@ -60,8 +59,7 @@ def section(studies, end_times=(2.5, 5, 10), name='threshold-time'):
         run = os.path.join(cases, case)
         if not os.path.exists(os.path.join(run, 'summary.json')):
             continue
-        with open(os.path.join(run, 'case.json')) as f:
-            sigma = float(json.load(f)['vary']['Material/Line tension'])
+        sigma = float(read_json(os.path.join(run, 'case.json'))['vary']['Material/Line tension'])
         stats, summary = load_statistics(run), load_summary(run)
         crossing = first_crossing(stats['time'], stats['domain_protrusion'])
         runs.append((sigma, crossing, float(summary['time'])))
@@ -99,7 +97,7 @@ def section(studies, end_times=(2.5, 5, 10), name='threshold-time'):
                if top else '.'))
     sweep = 'experiments/studies/' + name + '.json'
     return [f'## The flat-start threshold against the end time ({heading})\n',
-            f'```sh\nscripts/sweep.py {sweep} --workers 2\n```\n',
+            f'```sh\n/usr/bin/python3 -m membrane_flow sweep {sweep} --workers 2\n```\n',
             f'Flat starts of the 7.3 setup on {mesh}, run to t = {end_times[-1]:g}. The time at which the domain '
             'first protrudes like a sphere of its area (protrusion 0.95, the threshold of the brackets above) grows '
             'as sigma falls, so the flat-start threshold depends on how long one waits:\n'] + summary_lines + [

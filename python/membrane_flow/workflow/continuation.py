@@ -1,10 +1,79 @@
-#!/usr/bin/python3
-"""Follow a branch of equilibria of membrane-flow as one parameter moves (continuation).
+"""Branch continuation in one parameter: follow an equilibrium as the parameter moves.
 
-  continuation.py follow <base.prm> <Section/Entry> <v1> <v2> ... --output DIR
-                  [--start CHECKPOINT] [--classify outcome|protrusion:0.95|neck:0.4]
+A bistable system (a flat or incomplete bud and a complete bud, over a range of line
+tensions) has two branches of equilibria. Each is followed by continuation: relax at
+the first value from a start state, then move the parameter one step and relax again
+*from the previous equilibrium*, until the state leaves the branch (its class changes:
+the bud reopens, or the domain buds) or the values run out.
+
+`follow_branch(relax, values, state)` needs relax(value, state) -> dict with at least
+'state' (what the next relaxation starts from), 'energy' and 'class'. The branch is the
+class of the first relaxation; the first result of another class ends it and is kept
+as `left_at`.
+
+From two branches followed towards each other:
+- `turning_point(branch)`: the bracket [last value on the branch, first value off it]
+  where the branch ends (a saddle-node: the state it was in stops existing);
+- `crossing(a, b)`: where the energies of the two branches are equal (linear
+  interpolation of E_a - E_b between the values both branches hold), the thermodynamic
+  threshold; None if they do not cross where both exist.
+"""
+import argparse
+import json
+import os
+import sys
+
+from .. import launch, run
+from .critical import classifier
+from .sweep import write_atomically
+
+
+def follow_branch(relax, values, state):
+    points, left_at, branch = [], None, None
+    for value in values:
+        result = dict(relax(value, state))
+        result['value'] = value
+        if branch is None:
+            branch = result['class']
+        if result['class'] != branch:
+            left_at = result
+            break
+        points.append(result)
+        state = result['state']
+    return {'class': branch, 'points': points, 'left_at': left_at}
+
+
+def turning_point(branch):
+    """[last value on the branch, first value off it], or None if it never left."""
+    if branch['left_at'] is None or not branch['points']:
+        return None
+    return [branch['points'][-1]['value'], branch['left_at']['value']]
+
+
+def crossing(a, b):
+    """The parameter where the two branches' energies are equal, or None."""
+    energy_b = {p['value']: p['energy'] for p in b['points']}
+    common = sorted(v for v in (p['value'] for p in a['points']) if v in energy_b)
+    energy_a = {p['value']: p['energy'] for p in a['points']}
+    difference = [(v, energy_a[v] - energy_b[v]) for v in common]
+    for (v0, d0), (v1, d1) in zip(difference, difference[1:]):
+        if d0 == 0:
+            return v0
+        if d0 * d1 < 0:
+            return v0 + (v1 - v0) * d0 / (d0 - d1)
+    if difference and difference[-1][1] == 0:
+        return difference[-1][0]
+    return None
+
+
+# -- the command line: python3 -m membrane_flow continuation follow / compare -------------------
+
+COMMAND_HELP = """Follow a branch of equilibria of membrane-flow as one parameter moves (continuation).
+
+  python3 -m membrane_flow continuation follow <base.prm> <Section/Entry> <v1> <v2> ... --output DIR
+      [--start CHECKPOINT] [--classify outcome|protrusion:0.95|neck:0.4]
                   [--plateau RATE] [--plateau-time T0] [--max-time T] [--set 'Section/Entry=value' ...] [--exe PATH]
-  continuation.py compare DIR_A DIR_B
+  python3 -m membrane_flow continuation compare DIR_A DIR_B
 
 `follow` relaxes at v1 (from CHECKPOINT, or from the input's initial state), then at each
 next value resumes from the previous equilibrium's checkpoint with the changed parameter
@@ -27,20 +96,10 @@ Exit codes: 0 done; 1 bad arguments; 2 a run failed (the branch so far is writte
 130 / 143 interrupted.
 
 Example (the complete-bud branch of 7.3 followed down in line tension from a budded state):
-  scripts/continuation.py follow experiments/7.3-budding.prm 'Material/Line tension' 1000 900 800 700 \\
+  python3 -m membrane_flow continuation follow experiments/7.3-budding.prm 'Material/Line tension' 1000 900 800 700 \\
       --start results/s1000/checkpoint.txt --classify protrusion:0.95 --output results/branch-down"""
-import argparse
-import json
-import os
-import subprocess
-import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from membrane_workflow.critical import classifier  # noqa: E402
-from membrane_workflow.continuation import crossing, follow_branch, turning_point  # noqa: E402
-from membrane_workflow.sweep import write_atomically  # noqa: E402
-
-NAME = 'continuation.py'
+NAME = 'membrane_flow continuation'
 
 
 class RunFailed(Exception):
@@ -48,19 +107,16 @@ class RunFailed(Exception):
 
 
 def checkpoint_time(path):
-    with open(path) as f:
-        for line in f:
-            if line.startswith('time '):
-                return float(line.split()[1])
-            if line.startswith('parameters'):
-                break
-    raise RunFailed(f'{path} is not a checkpoint of membrane-flow (no time)')
+    try:
+        return run.checkpoint_time(path)
+    except ValueError as e:
+        raise RunFailed(str(e)) from None
 
 
 def follow(args):
     classify = classifier(args.classify)
     os.makedirs(args.output, exist_ok=True)
-    exe = os.path.abspath(args.exe)
+    exe = os.path.abspath(launch.find_executable(args.exe))
 
     def relax(value, checkpoint):
         directory = os.path.join(args.output, f'{value:g}')
@@ -73,13 +129,12 @@ def follow(args):
             start = checkpoint_time(checkpoint)
             command += ['--set', f'Checkpoint/Resume from={os.path.abspath(checkpoint)}']
         command += ['--set', f'Time stepping/End time={start + args.max_time:g}', args.base]
-        result = subprocess.run(command, capture_output=True, text=True)
+        result = launch.output(command)
         summary_path = os.path.join(directory, 'summary.json')
         if result.returncode != 0 or not os.path.exists(summary_path):
             last = (result.stderr or result.stdout).strip().splitlines()[-1:] or ['no output']
             raise RunFailed(f'{args.parameter} = {value:g}: exit code {result.returncode}: {last[0]}')
-        with open(summary_path) as f:
-            summary = json.load(f)
+        summary = run.read_json(summary_path)
         point = {'state': os.path.join(directory, 'checkpoint.txt'), 'energy': summary['energy'],
                  'class': classify(summary), 'time': summary['time'],
                  'at_plateau': summary['stop_reason'].startswith('equilibrium'),
@@ -113,10 +168,9 @@ def compare(args):
     for directory in (args.a, args.b):
         path = os.path.join(directory, 'branch.json')
         if not os.path.isfile(path):
-            print(f'{NAME}: error: {path} does not exist (the output of continuation.py follow)', file=sys.stderr)
+            print(f'{NAME}: error: {path} does not exist (the output of continuation follow)', file=sys.stderr)
             return 1
-        with open(path) as f:
-            branches.append(json.load(f))
+        branches.append(run.read_json(path))
     for b in branches:
         turn = b['turning_point']
         print(f"branch '{b['class']}' ({len(b['points'])} points): " +
@@ -126,8 +180,8 @@ def compare(args):
     return 0
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=COMMAND_HELP, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest='command', required=True)
     f = sub.add_parser('follow')
     f.add_argument('base')
@@ -141,12 +195,11 @@ def main():
                    help='how long the rate must stay below --plateau (Time stepping/Equilibrium time)')
     f.add_argument('--max-time', type=float, default=10.0)
     f.add_argument('--set', action='append', default=[])
-    f.add_argument('--exe', default=os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'build',
-                                                 'membrane-flow'))
+    f.add_argument('--exe', help='the program (default: see membrane_flow.launch.find_executable)')
     c = sub.add_parser('compare')
     c.add_argument('a')
     c.add_argument('b')
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     if args.command == 'compare':
         return compare(args)
     try:

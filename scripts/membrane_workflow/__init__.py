@@ -1,1 +1,0 @@
-"""Science workflow around membrane-flow: budding time, sweeps, critical values."""
