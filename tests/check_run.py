@@ -8,10 +8,11 @@ steps of the gradient flow: their energy changes (column adaptation_energy_jump,
 cumulative) are taken out before the comparison, and so is the work p dV done on a
 vesicle by a moving volume target or a prescribed pressure (column pressure_work)."""
 import argparse
-import json
 import sys
 
 import numpy as np
+
+from membrane_flow.run import load_statistics, load_summary  # PYTHONPATH: the build's python/
 
 parser = argparse.ArgumentParser()
 parser.add_argument("dir")
@@ -26,12 +27,8 @@ parser.add_argument("--min-protrusion", type=float, help="lower bound on the fin
 parser.add_argument("--max-area-error", type=float, help="bound on the local vertex-area error area_error in every row")
 args = parser.parse_args()
 
-with open(f"{args.dir}/statistics.txt") as f:
-    names = f.readline().lstrip("#").split()
-    data = np.atleast_2d(np.loadtxt(f))
-column = {n: data[:, i] for i, n in enumerate(names)}
-with open(f"{args.dir}/summary.json") as f:
-    summary = json.load(f)
+column = load_statistics(args.dir)
+summary = load_summary(args.dir)
 
 ok = True
 def check(condition, message):

@@ -5,10 +5,11 @@ Usage: check_vesicle.py <dir> [--max-step-volume-drift X] [--max-volume-drift X]
 Always asserts: the discrete Gauss map covers 4 pi (discrete Gauss-Bonnet) in every row to 1e-10,
 and summary.json carries volume, reduced_volume, pressure and integral_K."""
 import argparse
-import json
 import sys
 
 import numpy as np
+
+from membrane_flow.run import load_statistics, load_summary  # PYTHONPATH: the build's python/
 
 parser = argparse.ArgumentParser()
 parser.add_argument("dir")
@@ -19,12 +20,8 @@ parser.add_argument("--laplace-pressure", type=float, help="expected last laplac
 parser.add_argument("--tolerance", type=float, default=1e-2, help="relative tolerance of --laplace-pressure")
 args = parser.parse_args()
 
-with open(f"{args.dir}/statistics.txt") as f:
-    names = f.readline().lstrip("#").split()
-    data = np.atleast_2d(np.loadtxt(f))
-column = {n: data[:, i] for i, n in enumerate(names)}
-with open(f"{args.dir}/summary.json") as f:
-    summary = json.load(f)
+column = load_statistics(args.dir)
+summary = load_summary(args.dir)
 
 ok = True
 def check(condition, message):

@@ -8,10 +8,12 @@ Usage: compare_statistics.py a b [tol]"""
 import sys
 import numpy as np
 
+from membrane_flow.run import read_statistics  # PYTHONPATH: the build's python/
+
+
 def load(path):
-    with open(path) as f:
-        names = f.readline().lstrip('#').split()
-    return names, np.atleast_2d(np.loadtxt(path))
+    columns = read_statistics(path)
+    return list(columns), np.column_stack(list(columns.values()))
 
 names_a, a = load(sys.argv[1])
 names_b, b = load(sys.argv[2])

@@ -17,7 +17,6 @@ gives the steps of the direct solver, in a number of iterations that does not gr
    16 x 16 patch gives the same energies as the one-rank LU run, to 1e-9 relative.
 4. With Shape/Curvature mass = lumped the input is refused, naming both entries.
 Usage: test_block_solver.py <membrane-flow> <experiments directory>"""
-import json
 import os
 import subprocess
 import sys
@@ -25,9 +24,11 @@ import tempfile
 
 import numpy as np
 
+from membrane_flow import launch  # PYTHONPATH: the build's python/
+from membrane_flow.run import load_statistics, load_summary
+
 exe, experiments = sys.argv[1], sys.argv[2]
-env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
-           OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+env = launch.environment(mpi=True)  # one thread per process; mpirun as root allowed
 work = tempfile.mkdtemp(prefix="membrane_block_solver_")
 
 passed = failed = 0
@@ -41,18 +42,16 @@ def check(condition, message):
 
 def run(name, solver, prm, *extra, ranks=1):
     out = os.path.join(work, name)
-    launcher = ["mpirun", "--oversubscribe", "-np", str(ranks)] if ranks > 1 else []
-    result = subprocess.run(launcher + [exe, "--quiet", "--set", "Output/Write VTU=false", "--set", "Checkpoint/Interval=0",
+    result = subprocess.run(launch.command(exe, ["--quiet", "--set", "Output/Write VTU=false", "--set", "Checkpoint/Interval=0",
                              "--set", "Time stepping/Adaptive=false", "--set", "Time stepping/Maximum steps=2",
                              "--set", f"Linear solver/Type={solver}", "--set", f"Output/Directory={out}", *extra,
-                             os.path.join(experiments, prm)],
+                             os.path.join(experiments, prm)], ranks, "mpirun --oversubscribe"),
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if result.returncode != 0:
         print(result.stdout)
         return None
-    with open(os.path.join(out, "summary.json")) as f:
-        summary = json.load(f)
-    energy = np.atleast_2d(np.loadtxt(os.path.join(out, "statistics.txt")))[:, 3]
+    summary = load_summary(out)
+    energy = load_statistics(out)["energy"]
     return energy, summary
 
 

@@ -23,14 +23,17 @@ import tempfile
 
 import numpy as np
 
+from membrane_flow import launch  # PYTHONPATH: the build's python/
+from membrane_flow.run import load_statistics
+
 exe, prm, extra = sys.argv[1], sys.argv[2], sys.argv[3:]
 common = ["--quiet", "--set", "Mesh/Cells per side=16", "--set", "Mesh/Maximum refinement level=0", "--set", "Material/Line tension=630",
           "--set", "Material/Transition length=0.06", "--set", "Output/Write VTU=false", *extra]
-env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+env = launch.environment()
 
 
 def energies(directory):
-    return np.atleast_2d(np.loadtxt(os.path.join(directory, "statistics.txt")))[:, 3]
+    return load_statistics(directory)["energy"]
 
 
 passed = failed = 0

@@ -21,8 +21,11 @@ import tempfile
 
 import numpy as np
 
+from membrane_flow import launch  # PYTHONPATH: the build's python/
+from membrane_flow.run import load_statistics
+
 exe, prm = sys.argv[1], sys.argv[2]
-env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+env = launch.environment()
 work = tempfile.mkdtemp(prefix="membrane_line_stiffness_")
 
 passed = failed = 0
@@ -41,7 +44,7 @@ def run(name, stiffness, tau, *extra):
                              "--set", f"Time stepping/Time step={tau}", "--set", f"Shape/Line stiffness={stiffness}",
                              "--set", f"Output/Directory={out}", *extra, prm],
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    energy = np.atleast_2d(np.loadtxt(os.path.join(out, "statistics.txt")))[:, 3]
+    energy = load_statistics(out)["energy"]
     return result, energy
 
 
