@@ -8,77 +8,55 @@ the options of one. The option before the command is shared by all of them:
                (membrane_flow.launch.find_executable). A command's own --exe overrides it.
 """
 import importlib
-import importlib.util
 import os
-import runpy
 import sys
 
-# command -> (module, how it runs, one line of help). 'main': the module's main(argv) returns the
-# exit code; 'script': the module is a script run as __main__ with sys.argv set (it reads its
-# arguments itself).
+# command -> (module, one line of help); the module's main(argv) runs the command and returns its exit code.
 COMMANDS = {
     # the workflow (docs/workflow.md)
-    'sweep': ('workflow.sweep', 'main', 'run a parameter sweep from a sweep file into one results table'),
-    'critical': ('workflow.critical', 'main', 'bisect one parameter for the change of outcome class'),
-    'continuation': ('workflow.continuation', 'main',
+    'sweep': ('workflow.sweep', 'run a parameter sweep from a sweep file into one results table'),
+    'critical': ('workflow.critical', 'bisect one parameter for the change of outcome class'),
+    'continuation': ('workflow.continuation',
                      'follow a branch of equilibria in one parameter (follow), or compare two (compare)'),
-    'budding-time': ('workflow.budding_time', 'main', 'the budding time T_min of finished runs'),
+    'budding-time': ('workflow.budding_time', 'the budding time T_min of finished runs'),
     # pictures (docs/visualization.md)
-    'render': ('pictures.render', 'main', 'PNG of a surface (a VTU, or a snapshot of a PVD series) with VTK'),
-    'movie': ('pictures.movie', 'main', 'MP4 of every snapshot of a run'),
-    'plot-history': ('pictures.history', 'main', 'energy, conservation and bud observables of runs against time'),
-    'plot-study': ('pictures.study', 'main', 'an observable of a sweep against the varied parameter'),
+    'render': ('pictures.render', 'PNG of a surface (a VTU, or a snapshot of a PVD series) with VTK'),
+    'movie': ('pictures.movie', 'MP4 of every snapshot of a run'),
+    'plot-history': ('pictures.history', 'energy, conservation and bud observables of runs against time'),
+    'plot-study': ('pictures.study', 'an observable of a sweep against the varied parameter'),
     # studies
-    'mesh-convergence': ('studies.mesh_convergence', 'main', 'the mesh-convergence study (docs/mesh-convergence.md)'),
-    'neck-resolution': ('studies.neck_resolution', 'main', 'the neck-resolution study (docs/neck-resolution*.md)'),
-    'time-step-study': ('studies.time_steps', 'script', 'the time-step accuracy study (docs/time-step-accuracy.md)'),
-    'study-7.1': ('studies.sorting_7_1', 'main', 'the sorting experiment 7.1 over seeds and meshes'),
-    'axisymmetric-vesicle': ('studies.axisymmetric_vesicle', 'script',
+    'mesh-convergence': ('studies.mesh_convergence', 'the mesh-convergence study (docs/mesh-convergence.md)'),
+    'neck-resolution': ('studies.neck_resolution', 'the neck-resolution study (docs/neck-resolution*.md)'),
+    'time-step-study': ('studies.time_steps', 'the time-step accuracy study (docs/time-step-accuracy.md)'),
+    'study-7.1': ('studies.sorting_7_1', 'experiment 7.1 with one change at a time (docs/experiments.md)'),
+    'axisymmetric-vesicle': ('studies.axisymmetric_vesicle',
                              'reference shapes of revolution (sphere, spheroid, prolate branch)'),
+    'sharp-interface': ('sharp_interface',
+                        'the sharp-interface limit of 7.3 (experiments/studies/sharp_interface)'),
     # the generated pages of docs/
-    'parameter-manual': ('docgen.parameter_manual', 'script', 'docs/parameters.md from the declarations in the code'),
-    'experiment-docs': ('docgen.experiments', 'script', 'docs/experiments.md from the runs of the experiments'),
-    'gallery': ('docgen.gallery', 'script', 'docs/gallery.md: the paper\'s figures from the experiment runs'),
-    'study-docs': ('docgen.studies', 'script', 'docs/studies.md from the sweeps and bisections'),
-    'branch-docs': ('docgen.branches', 'main', 'docs/branches.md from the continuation runs'),
-}
-OPTIONAL_COMMANDS = {  # modules that may be absent from a checkout
-    'sharp-interface': ('sharp_interface', 'main', 'the sharp-interface reference'),
+    'parameter-manual': ('docgen.parameter_manual', 'docs/parameters.md from the declarations in the code'),
+    'experiment-docs': ('docgen.experiments', 'docs/experiments.md from the runs of the experiments'),
+    'gallery': ('docgen.gallery', 'docs/gallery.md: the paper\'s figures from the experiment runs'),
+    'study-docs': ('docgen.studies', 'docs/studies.md from the sweeps and bisections'),
+    'branch-docs': ('docgen.branches', 'docs/branches.md from the continuation runs'),
 }
 PROG = 'python3 -m membrane_flow'
-
-
-def available_commands():
-    commands = dict(COMMANDS)
-    here = os.path.dirname(os.path.abspath(__file__))
-    for name, (module, kind, text) in OPTIONAL_COMMANDS.items():
-        if os.path.exists(os.path.join(here, *module.split('.')) + '.py'):
-            commands[name] = (module, kind, text)
-    return commands
 
 
 def usage(commands):
     width = max(len(name) for name in commands)
     lines = [f'usage: {PROG} [--exe PATH] <command> [options]   ({PROG} <command> --help for its options)', '',
              'commands:']
-    lines += [f'  {name:{width}s}  {text}' for name, (_, _, text) in commands.items()]
+    lines += [f'  {name:{width}s}  {text}' for name, (_, text) in commands.items()]
     lines += ['', 'shared option (before the command):',
               '  --exe PATH  the membrane-flow program every command runs (else the build of this package, '
               'else membrane-flow on PATH)']
     return '\n'.join(lines)
 
 
-def module_docstring(module):
-    """The docstring of a module of the package, read without importing it."""
-    import ast
-    spec = importlib.util.find_spec(f'{__package__}.{module}')
-    with open(spec.origin) as f:
-        return ast.get_docstring(ast.parse(f.read())) or ''
-
-
 def main(argv=None):
     argv = list(sys.argv[1:] if argv is None else argv)
-    commands = available_commands()
+    commands = COMMANDS
     while argv and argv[0].startswith('-'):
         option = argv.pop(0)
         if option in ('-h', '--help'):
@@ -104,14 +82,8 @@ def main(argv=None):
         print(f'{PROG}: error: unknown command {name!r}' + (f' (did you mean {close[0]!r}?)' if close else ''),
               file=sys.stderr)
         return 2
-    module, kind, _ = commands[name]
+    module = commands[name][0]
     sys.argv = [f'membrane_flow {name}'] + args  # the program name in usage and error messages
-    if kind == 'script':
-        if args and args[0] in ('-h', '--help'):  # without running it: a generator reads its arguments itself
-            print(f'usage: {PROG} {name} ...\n\n{module_docstring(module)}')
-            return 0
-        runpy.run_module(f'{__package__}.{module}', run_name='__main__', alter_sys=False)
-        return 0
     code = importlib.import_module(f'{__package__}.{module}').main(args)
     return code if code is not None else 0
 
