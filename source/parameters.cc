@@ -583,10 +583,9 @@ namespace Membrane
                 ExcMessage("Entry <Linear solver/Type> = block preconditions the seven-field shape system: it needs "
                            "<Shape/Curvature mass> = consistent (got lumped; use Type = direct with it)"));
 
-    AssertThrow(!parameters.thermal.active() || (!parameters.evolve_shape && !parameters.adaptive),
+    AssertThrow(!parameters.thermal.active() || !parameters.adaptive,
                 ExcMessage("Entry <Material/Temperature> = " + number(parameters.thermal.temperature) +
-                           " > 0 needs <Shape/Evolve shape> = false (the shape noise is not implemented yet) and "
-                           "<Time stepping/Adaptive> = false (a fixed tau: the energy fluctuates, so the "
+                           " > 0 needs <Time stepping/Adaptive> = false (a fixed tau: the energy fluctuates, so the "
                            "energy-descent control does not apply); or set Temperature = 0"));
 
     AssertThrow(!parameters.output_directory.empty(),

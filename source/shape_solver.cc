@@ -20,11 +20,15 @@ namespace Membrane
     constexpr unsigned int pressure_component = 3, curvature_component = 4, first_tangent_component = 5;
     /// Fixes the constant pressure where H = 0 (see the header); dimensionless.
     constexpr double pressure_regularization = 1e-12;
+    /// The shape noise's variates are components first_noise_component + 3 q + c of the cell's
+    /// key; the Cahn-Hilliard noise of the same step uses components 0 and 1.
+    constexpr unsigned int first_noise_component = 8;
 
     /// Frozen data of Gamma^m at one quadrature point.
     struct PointData
     {
       Tensor<1, spacedim> nu, grad_phi, tangent[2], unit_tangent[2], flux; ///< flux: multiplies grad psi in the normal row
+      Tensor<1, spacedim> noise; ///< tau L_X eta: the thermal force density (0 at k_BT = 0)
       double              kappa = 0, excess = 0, H = 0, Y = 0, source = 0, d_phi[2] = {0, 0};
     };
   } // namespace
@@ -48,7 +52,7 @@ namespace Membrane
 
   void ShapeSolver::assemble(const Surface &surface, const Geometry &geometry, const Material &material,
                              const ShapeOptions &options, const double tau, const Vector &phi,
-                             const Vector &potential)
+                             const Vector &potential, const ThermalNoise &noise)
   {
     matrix = 0;
     rhs    = 0;
@@ -167,6 +171,15 @@ namespace Membrane
               const double line_density = sigma * (0.5 * xi2 * grad_phi.norm_square() + DoubleWell::value(p));
               d.source = -d.kappa * d.excess * scalar_product(G, G) + sigma * xi2 * (grad_phi * (G * grad_phi)) +
                          d.H * line_density;
+              // Thermal force, times tau L_X: standard deviation sqrt(2 k_BT tau L_X / w_q) per component.
+              if (noise.active())
+                {
+                  const double        scale = std::sqrt(2 * noise.temperature * tauL / fe_values.JxW(q));
+                  const std::uint64_t key   = cell_key(cell->id());
+                  for (unsigned int c = 0; c < spacedim; ++c)
+                    d.noise[c] =
+                      scale * standard_normal(noise.seed, noise.step, key, first_noise_component + spacedim * q + c);
+                }
             }
 
           local_matrix = 0;
@@ -255,16 +268,17 @@ namespace Membrane
                     }
 
                   double b = 0;
-                  if (tangential_row)
-                    b = tauL * d.Y * (d.grad_phi * test_tangent(i, tangent_k, d)) * psi;
+                  if (tangential_row) // + tau L_X (Y grad phi + eta, psi a_k)
+                    b = tauL * d.Y * (d.grad_phi * test_tangent(i, tangent_k, d)) * psi +
+                        (d.noise * test_tangent(i, tangent_k, d)) * psi;
                   else if (reduced && ci == 0)
                     b = -(nu_i * grad_psi); // -(nu_i . grad_s X^m, grad_s psi)
                   else if (ci < spacedim)
                     b = -grad_psi[ci]; // -(grad_s X^m, grad_s psi_vec)
-                  else if (ci == pressure_component)
-                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi); // + a_target - a^m: add_area_defect()
-                  else
-                    b = tauL * (d.flux * grad_psi + d.source * psi); // normal row
+                  else if (ci == pressure_component) // + a_target - a^m: add_area_defect()
+                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi) + delta * (d.noise * grad_psi);
+                  else // normal row, + tau L_X (eta, psi nu)
+                    b = tauL * (d.flux * grad_psi + d.source * psi) + (d.noise * d.nu) * psi;
                   local_rhs(i) += b;
                 }
             }
@@ -304,7 +318,8 @@ namespace Membrane
   ShapeUpdate ShapeSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
                                 const ShapeOptions &options, const LinearSolverOptions &solver_options,
                                 const double tau, const Vector &area_defect, const Vector &phi,
-                                const Vector &potential, TimerOutput *timer, const VolumeCoupling &volume_term)
+                                const Vector &potential, TimerOutput *timer, const VolumeCoupling &volume_term,
+                                const ThermalNoise &noise)
   {
     Assert(options.curvature_mass == curvature_mass,
            ExcMessage("the curvature mass of the options must be that of the solver's layout"));
@@ -313,7 +328,7 @@ namespace Membrane
       std::optional<TimerOutput::Scope> scope;
       if (timer)
         scope.emplace(*timer, "shape assembly");
-      assemble(surface, geometry, material, options, tau, phi, potential);
+      assemble(surface, geometry, material, options, tau, phi, potential, noise);
       add_area_defect(surface, area_defect);
       if (volume.active)
         assemble_volume_coupling(surface, geometry, tau * material.shape_mobility);

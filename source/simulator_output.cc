@@ -1,5 +1,6 @@
 // What a run writes: the statistics row of each step, the progress line, checkpoints
 // and the run's records (run_info.json, summary.json). Part of Simulator.
+#include <membrane/analysis/fourier_modes.h>
 #include <membrane/io/atomic_file.h>
 #include <membrane/io/checkpoint.h>
 #include <membrane/io/json.h>
@@ -41,6 +42,9 @@ namespace Membrane
     const auto [gamma_min, gamma_max] = global_range(pressure);
     stats.set("gamma_min", gamma_min);
     stats.set("gamma_max", gamma_max);
+    // The mean surface pressure: the tension Sigma of the fluctuation spectra (with the mean
+    // line-energy density G, (gradient_energy + well_energy) / area).
+    stats.set("gamma_mean", integrate(surface, pressure) / area);
     stats.set("bud_height", bud.height);
     stats.set("neck_radius", bud.neck_radius);
     stats.set("bud_radius", bud.bud_radius);
@@ -68,6 +72,17 @@ namespace Membrane
     stats.set("wall_seconds", earlier_wall_seconds + wall.wall_time());
     if (closed())
       record_vesicle_statistics();
+    else
+      {
+        // Spectra of the patch (analysis/fourier_modes.h): <|h_k|^2> and <|phi_k|^2> over the
+        // shells |k|^2 = 1 and 2.
+        const LowestModes height = lowest_mode_powers(surface.vector_space(), surface.displacement(), 2);
+        const LowestModes phase  = lowest_mode_powers(surface.scalar_space(), phi, 0);
+        stats.set("height_mode_1", height.shell_1);
+        stats.set("height_mode_2", height.shell_2);
+        stats.set("phase_mode_1", phase.shell_1);
+        stats.set("phase_mode_2", phase.shell_2);
+      }
     stats.end_row();
   }
 

@@ -54,7 +54,7 @@ namespace Membrane
     defect_of_step -= areas_before;
     ShapeUpdate update = shape_solver.step(surface, geometry, parameters.material, options, parameters.linear_solver,
                                            tau_trial, defect_of_step, phi, chemical_potential, &timer,
-                                           volume_term(tau_trial));
+                                           volume_term(tau_trial), noise_of_step());
     Vector moved = surface.vector_space().make_owned();
     moved        = surface.displacement();
     const auto apply = [&](const ShapeUpdate &part) {
@@ -190,8 +190,11 @@ namespace Membrane
         }
     }
     update_geometry();
+    // At a temperature the energy of the step fluctuates by about k_BT per mode, far more than
+    // the O(h^2) change of the re-parametrization: the move is always kept.
     if (std::isfinite(energy.total()) &&
-        energy.total() <= energy_before + parameters.energy_tolerance * std::abs(energy_before))
+        (parameters.thermal.active() ||
+         energy.total() <= energy_before + parameters.energy_tolerance * std::abs(energy_before)))
       return;
     restore_state(lagrangian);
     remap_correction  = 0;
@@ -216,11 +219,9 @@ namespace Membrane
     Vector potential = surface.scalar_space().make_owned();
     try
       {
-        ThermalNoise noise = parameters.thermal;
-        noise.step         = step;
-        solver_iterations  = cahn_hilliard.step(surface, geometry, material, parameters.cahn_hilliard,
-                                                parameters.linear_solver, tau_trial, phi, phi_new, potential, &timer,
-                                                noise);
+        solver_iterations = cahn_hilliard.step(surface, geometry, material, parameters.cahn_hilliard,
+                                               parameters.linear_solver, tau_trial, phi, phi_new, potential, &timer,
+                                               noise_of_step());
         if (!std::isfinite(phi_new.l2_norm()) || phi_new.linfty_norm() > 10)
           return restore("non_finite", "phi became non-finite or |phi| > 10");
         chemical_potential = potential;
@@ -282,6 +283,13 @@ namespace Membrane
                        " x <Time stepping/Accuracy tolerance>");
       }
     return {};
+  }
+
+  ThermalNoise Simulator::noise_of_step() const
+  {
+    ThermalNoise noise = parameters.thermal;
+    noise.step         = step;
+    return noise;
   }
 
   double Simulator::local_error(const double tau) const

@@ -2,6 +2,7 @@
 // stabilization against checkerboard modes, and the order of convergence of a
 // short smooth evolution under mesh refinement.
 #include "fixed_surface.h"
+#include "parameter_text.h"
 
 #include <membrane/analysis/bud_shape.h>
 #include <membrane/parameters.h>
@@ -23,16 +24,7 @@ namespace
 {
   using namespace Membrane;
 
-  /// Parameters from .prm text (everything else at its default).
-  Parameters make_parameters(const std::string &text)
-  {
-    dealii::ParameterHandler prm;
-    Parameters::declare(prm);
-    prm.parse_input_from_string(text);
-    Parameters parameters;
-    parameters.parse(prm);
-    return parameters;
-  }
+  using Testing::make_parameters;
 
   const std::string homogeneous = R"(
 subsection Initial phase

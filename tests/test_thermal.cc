@@ -1,4 +1,4 @@
-// Thermal noise of the Cahn-Hilliard step (MODEL.md section 10): equipartition
+// Thermal noise (MODEL.md section 10). The Cahn-Hilliard step: equipartition
 // of phi in one phase. On a flat 16 x 16 patch at phi_0 = -1 with sigma = 1, xi
 // = 0.1, L_phi = 1, the fluctuating linearized Cahn-Hilliard equation is, mode
 // by mode, an Ornstein-Uhlenbeck process with the stationary variance
@@ -10,12 +10,18 @@
 // enough that a noise amplitude off by 20 % (variance off by 44 %) fails. The
 // noise is conserved: integral phi ds does not change.
 #include "fixed_surface.h"
+#include "parameter_text.h"
 
+#include <membrane/analysis/fourier_modes.h>
 #include <membrane/physics/thermal_noise.h>
+#include <membrane/simulator.h>
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <complex>
+#include <filesystem>
 #include <iostream>
 #include <numeric>
 #include <vector>
@@ -111,4 +117,89 @@ TEST(Thermal, PhaseFluctuationsInOnePhaseFollowEquipartition)
       EXPECT_LT(error, 0.07); // resolves a 44 % change of the variance
       EXPECT_LT(std::abs(mean / expected - 1), std::max(3 * error, 0.05));
     }
+}
+
+// Shape noise (MODEL.md section 10): one step from a flat patch at rest, where the linearized
+// step decouples the Fourier modes. The height of mode k obeys (1 + lambda tau) h_k = tau L_X
+// eta_k with lambda = L_X kappa q^4 (the bending, implicit), so <|h_k|^2> = 2 k_BT tau L_X /
+// (1 + lambda tau)^2 exactly when the force's covariance is (2 k_BT / (tau L_X)) times the mass
+// matrix (the Q1 mass symbol and that of the interpolant's Fourier integral cancel to O(q^4 h^4)).
+// The tangential motion has no restoring force, but the local area constraint removes its
+// longitudinal (compressive) part: the transverse amplitude has the variance 2 k_BT tau L_X,
+// the longitudinal one almost none. Independent trials differ in the noise seed; a noise off
+// by 20 % (variance off by 44 %) fails.
+TEST(Thermal, OneShapeStepHasTheCovarianceOfTheDissipation)
+{
+  const double kT = 1e-4, mobility = 1, tau = 3.2e-4; // lambda tau = 0.5 for |k| = 1
+  const auto   dir = std::filesystem::temp_directory_path() / "membrane_thermal_shape_step";
+  const std::vector<std::array<int, 2>> modes = {{{1, 0}}, {{0, 1}}, {{1, 1}}, {{1, -1}}};
+  const unsigned int                    trials = 300;
+  // Per shell |k|^2 = 1, 2: the sums of |h_k|^2, |W_T,k|^2 and |W_L,k|^2 over its two modes.
+  std::array<double, 2> height{}, transverse{}, longitudinal{};
+  std::array<std::vector<double>, 2> height_samples;
+  for (unsigned int trial = 0; trial < trials; ++trial)
+    {
+      const Parameters parameters = Testing::make_parameters(R"(
+subsection Mesh
+  set Cells per side = 16
+end
+subsection Initial phase
+  set Type = uniform
+  set Uniform value = -1
+end
+subsection Material
+  set Temperature = )" + std::to_string(kT) + R"(
+  set Noise seed = )" + std::to_string(trial + 1) + R"(
+  set Shape mobility = )" + std::to_string(mobility) + R"(
+  set Line tension = 1
+  set Transition length = 0.1
+end
+subsection Shape
+  set Grid control weight = 0
+end
+subsection Time stepping
+  set Adaptive = false
+  set Time step = )" + std::to_string(tau) + R"(
+  set Maximum steps = 1
+end
+subsection Output
+  set Directory = )" + dir.string() + R"(
+  set Write VTU = false
+end
+)");
+      Simulator simulator(parameters, RunOptions{true, "", "test"});
+      simulator.initialize();
+      ASSERT_TRUE(simulator.advance());
+      const Surface &surface = simulator.current_surface();
+      std::array<std::vector<std::complex<double>>, spacedim> amplitude;
+      for (unsigned int c = 0; c < spacedim; ++c)
+        amplitude[c] = fourier_amplitudes(surface.vector_space(), surface.displacement(), c, modes);
+      for (std::size_t m = 0; m < modes.size(); ++m)
+        {
+          const unsigned int  shell = m / 2;
+          const double        k1 = modes[m][0], k2 = modes[m][1], norm = std::hypot(k1, k2);
+          const auto          along = (k1 * amplitude[0][m] + k2 * amplitude[1][m]) / norm;
+          const auto          across = (-k2 * amplitude[0][m] + k1 * amplitude[1][m]) / norm;
+          height[shell] += std::norm(amplitude[2][m]);
+          transverse[shell] += std::norm(across);
+          longitudinal[shell] += std::norm(along);
+        }
+    }
+  for (unsigned int shell = 0; shell < 2; ++shell)
+    {
+      const double q4        = std::pow(4 * M_PI * M_PI * (shell + 1), 2);
+      const double free_step = 2 * kT * tau * mobility; // <|W_k|^2> of one component without a force
+      const double samples   = 2.0 * trials;            // two modes per shell
+      const double h2        = height[shell] / samples / (free_step / std::pow(1 + mobility * q4 * tau, 2));
+      const double t2        = transverse[shell] / samples / free_step;
+      const double l2        = longitudinal[shell] / samples / free_step;
+      // |h_k|^2 of a complex Gaussian amplitude is exponential: relative standard error 1/sqrt(n).
+      const double error = 1 / std::sqrt(samples);
+      std::cout << "|k|^2 = " << shell + 1 << ": <|h_k|^2> / expected = " << h2 << ", transverse " << t2
+                << ", longitudinal " << l2 << " (standard error " << error << ")" << std::endl;
+      EXPECT_LT(std::abs(h2 - 1), 3 * error + 0.03);
+      EXPECT_LT(std::abs(t2 - 1), 3 * error + 0.03);
+      EXPECT_LT(l2, 0.05);
+    }
+  std::filesystem::remove_all(dir);
 }

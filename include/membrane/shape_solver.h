@@ -55,6 +55,16 @@
 //    factorization costs about (5/7)^3 = 0.36 of the consistent one. lumped_full keeps the
 //    seven fields of the lumped scheme and serves to verify the elimination.
 //
+// Thermal noise (MODEL.md section 10): at k_BT > 0 the force balance gains a random force
+// F_noise of covariance (2 k_BT / (tau L_X)) M, M the consistent mass of the velocity term.
+// It is white noise per quadrature point: a vector eta_q of three independent normals of
+// variance 2 k_BT / (tau L_X w_q) (w_q the point's weight), tested like the drift,
+//   normal row + tau L_X (eta, psi nu),   tangential row k + tau L_X (eta, psi a_k),
+// so that (eta, V) has exactly the covariance (2 k_BT / (tau L_X)) (V, V) for every V of
+// the discrete velocity space (2 x 2 Gauss is exact for the Q1 mass). The pressure
+// stabilization keeps the noisy tangential law's residual, + delta tau L_X (eta, grad psi).
+// The constraints (area rows, the volume row) project the noise as they project the drift.
+//
 // Closed surfaces (MODEL.md section 8; shape_solver_volume.cc): the enclosed volume
 // adds a global pressure p. Its force p n, tested with psi nu, enters the normal row
 // as - tau L_X p (n.nu, psi) on the left (p > 0 moves the surface along the outward
@@ -66,6 +76,7 @@
 // floor of the compliance -b.z / (tau L_X A) the row is dropped (shape_solver_volume.cc).
 
 #include <membrane/physics/material.h>
+#include <membrane/physics/thermal_noise.h>
 #include <membrane/shape_preconditioner.h>
 #include <membrane/solvers/linear_solver.h>
 #include <membrane/surface/geometry.h>
@@ -127,10 +138,12 @@ namespace Membrane
     /// One step; `area_defect` (owned, scalar space) is a_target(psi_i) - a^m(psi_i) per
     /// vertex (the areas the step aims at, Simulator::area_target(), minus those of
     /// Gamma^m; zero to keep the current areas). `timer` (optional) gets "shape assembly" and "shape solve".
+    /// An active `noise` adds the thermal force of this step (see above).
     ShapeUpdate step(const Surface &surface, const Geometry &geometry, const Material &material,
                      const ShapeOptions &options, const LinearSolverOptions &solver, double tau,
                      const Vector &area_defect, const Vector &phi_ghosted, const Vector &potential_ghosted,
-                     dealii::TimerOutput *timer = nullptr, const VolumeCoupling &volume = {});
+                     dealii::TimerOutput *timer = nullptr, const VolumeCoupling &volume = {},
+                     const ThermalNoise &noise = {});
 
     /// The projection of the last step's result back onto the area constraint: the
     /// last operator with the defect a_target - a(X^m + W) as the only right-hand side.
@@ -161,7 +174,8 @@ namespace Membrane
 
   private:
     void assemble(const Surface &surface, const Geometry &geometry, const Material &material,
-                  const ShapeOptions &options, double tau, const Vector &phi, const Vector &potential);
+                  const ShapeOptions &options, double tau, const Vector &phi, const Vector &potential,
+                  const ThermalNoise &noise);
     /// Add the vertex area defect to the right-hand side of the area equation.
     void add_area_defect(const Surface &surface, const Vector &area_defect);
     ShapeUpdate solve(const Surface &surface, dealii::TimerOutput *timer, bool same_matrix = false);

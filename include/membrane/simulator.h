@@ -130,7 +130,10 @@ namespace Membrane
     double    local_error(double tau) const;
     /// Shape step and its area projections; false if a solve gave non-finite values.
     bool      move_shape(double tau, const Vector &phi_new);
-    /// Grid control of the Lagrangian state X~, kept if F^{m+1} <= F^m.
+    /// The thermal noise of the step being taken (keyed by the step index, so that a
+    /// retried or resumed step draws the same variates).
+    ThermalNoise noise_of_step() const;
+    /// Grid control of the Lagrangian state X~, kept if F^{m+1} <= F^m (always at k_BT > 0).
     void      control_grid(double energy_before, double tau);
     /// The vertex areas a step of length tau aims at from the current ones a^m:
     /// a^m + theta (a_ref - a^m), theta = min(1, tau / <Shape/Area relaxation time>)

@@ -21,9 +21,10 @@ namespace Membrane
                       "k_BT, in the energy unit of the moduli (kappa = 20 k_BT means Temperature = kappa / 20; "
                       "docs/units.md): the thermal noise of the fluctuating gradient flow (MODEL.md section 10). "
                       "The Cahn-Hilliard step gains a conserved random flux of covariance 2 k_BT L_phi / tau per "
-                      "cell. 0: the deterministic flow. For now with <Shape/Evolve shape> = false and "
-                      "<Time stepping/Adaptive> = false (the energy fluctuates, so energy-descent control does not "
-                      "apply).");
+                      "cell, the shape step a random force of covariance 2 k_BT / (tau L_X) times the mass matrix, "
+                      "projected by the area and volume constraints like the deterministic force. 0: the "
+                      "deterministic flow. Needs <Time stepping/Adaptive> = false (a fixed tau: the energy "
+                      "fluctuates, so energy-descent control does not apply).");
     prm.declare_entry("Noise seed", "1", dealii::Patterns::Integer(0),
                       "Seed of the thermal noise. Each variate is a function of (seed, step, cell, component): a "
                       "run gives the same trajectory on any number of ranks and after a resume.");
