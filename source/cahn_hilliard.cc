@@ -1,6 +1,7 @@
 #include <membrane/cahn_hilliard.h>
 #include <membrane/solvers/cell_assembly.h>
 #include <membrane/physics/double_well.h>
+#include <membrane/physics/free_energy.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -46,6 +47,9 @@ namespace Membrane
 
     const double sigma = material.line_tension, xi2 = std::pow(material.transition_length, 2);
     const double mobility = material.phase_mobility;
+    // The line energy's part of Y is this step's operator; the other terms' parts are explicit.
+    const FreeEnergy terms(material);
+    TermPoint        curvature_point;
     // Conserved noise (model B, MODEL.md section 10), in the mass row times tau:
     // + sqrt(2 k_BT L_phi tau) (zeta_h, grad_s psi), zeta_h constant per cell, two independent
     // normals along an orthonormal tangent frame scaled by 1/sqrt(|cell|). A constant psi has no
@@ -87,8 +91,11 @@ namespace Membrane
             {
               const double S = linearized ? DoubleWell::second_derivative(old[q]) : constant_S;
               // Explicit part of Y: sigma (f'(phi^m) - S phi^m) + curvature coupling.
+              curvature_point.phi = old[q];
+              curvature_point.H   = H[q];
+              curvature_point.K   = K[q];
               const double explicit_potential = sigma * (DoubleWell::derivative(old[q]) - S * old[q]) +
-                                                material.curvature_potential(old[q], H[q], K[q]);
+                                                terms.potential(curvature_point);
               const double ds = fe_values.JxW(q);
               for (unsigned int i = 0; i < n_dofs; ++i)
                 {

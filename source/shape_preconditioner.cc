@@ -1,3 +1,4 @@
+#include <membrane/physics/free_energy.h>
 #include <membrane/shape_preconditioner.h>
 #include <membrane/shape_solver.h>
 #include <membrane/solvers/cell_assembly.h>
@@ -31,8 +32,11 @@ namespace Membrane
     scalars            = &surface.scalar_space();
     const double tauL  = tau * material.shape_mobility;
     const double delta = options.pressure_stabilization;
-    const double line_stiffness =
-        options.line_stiffness * tauL * material.line_tension * std::pow(material.transition_length, 2);
+    // The implicit parts of the energy terms (physics/free_energy.h): the normal row's
+    // stiffness on H~ and the tangential law's line stiffness.
+    const FreeEnergy terms(material);
+    TermPoint        point;
+    const double     line_stiffness = options.line_stiffness * tauL * terms.tangential_stiffness_weight();
 
     // One pattern per mesh (a new mesh makes a new preconditioner, ShapeSolver::setup).
     for (auto *m : {&mass, &tangential_operator, &stiffness, &bending, &pair_operator, &pressure_schur})
@@ -80,9 +84,10 @@ namespace Membrane
           for (unsigned int q = 0; q < n_q; ++q)
             {
               const double ds     = fe_values.JxW(q);
-              const double kappa  = material.bending_rigidity->value(phi_q[q]);
-              const double excess = H_q[q] - material.spontaneous_curvature->value(phi_q[q]);
-              const double root   = std::sqrt(tauL * kappa);
+              point.phi                       = phi_q[q];
+              point.H                         = H_q[q];
+              const NormalStiffness stiffness = terms.normal_stiffness(point);
+              const double          root      = std::sqrt(tauL * stiffness.kappa);
               // The implicit line stiffness of the tangential law (shape_solver.cc)
               // acts along grad phi; its isotropic bound keeps the tangential block's
               // solve positive definite.
@@ -101,7 +106,7 @@ namespace Membrane
                       local_T(i, j) += v * psi + line * gg;
                       local_K(i, j) += gg;
                       // Normal row's H~ block, with its sign: -K_e.
-                      local_Ke(i, j) += tauL * kappa * (gg + 0.5 * excess * excess * v * psi);
+                      local_Ke(i, j) += tauL * stiffness.kappa * (gg + stiffness.curvature_mass * v * psi);
                       local_pair(i, j) += v * psi + root * gg;
                       // -S: the tangential law's Darcy flux tau L_X grad gamma with the
                       // stabilization's share, and the normal motion's tau L_X H gamma

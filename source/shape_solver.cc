@@ -1,4 +1,4 @@
-#include <membrane/physics/double_well.h>
+#include <membrane/physics/free_energy.h>
 #include <membrane/shape_solver.h>
 #include <membrane/solvers/cell_assembly.h>
 #include <membrane/solvers/vector_access.h>
@@ -27,9 +27,11 @@ namespace Membrane
     /// Frozen data of Gamma^m at one quadrature point.
     struct PointData
     {
-      Tensor<1, spacedim> nu, grad_phi, tangent[2], unit_tangent[2], flux; ///< flux: multiplies grad psi in the normal row
+      Tensor<1, spacedim> nu, grad_phi, tangent[2], unit_tangent[2];
       Tensor<1, spacedim> noise; ///< tau L_X eta: the thermal force density (0 at k_BT = 0)
-      double              kappa = 0, excess = 0, H = 0, Y = 0, source = 0, d_phi[2] = {0, 0};
+      double              H = 0, Y = 0;
+      NormalStiffness     stiffness; ///< of the energy terms (physics/free_energy.h)
+      ShapeForce          force;
     };
   } // namespace
 
@@ -90,11 +92,12 @@ namespace Membrane
     dealii::Vector<double>           local_rhs(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
 
-    const double sigma = material.line_tension, xi2 = std::pow(material.transition_length, 2);
+    const FreeEnergy terms(material);
+    TermPoint        point;
     const double tauL  = tau * material.shape_mobility;
     const double delta = options.pressure_stabilization;
     // Weight of the linearized gradient energy in the tangential law (see below).
-    const double line_stiffness = options.line_stiffness * tauL * sigma * xi2;
+    const double line_stiffness = options.line_stiffness * tauL * terms.tangential_stiffness_weight();
 
     // The tangential law is tested, and the tangential part B~ of the curvature vector
     // expanded, along two tangent directions per vertex. On the periodic patch these are
@@ -140,37 +143,25 @@ namespace Membrane
 
           for (unsigned int q = 0; q < n_q; ++q)
             {
-              PointData   &d        = data[q];
-              const double p        = phi_q[q];
-              const auto  &G        = grad_nu_q[q]; // grad_s nu: G[c][e] = d nu_c / dx_e
-              const auto  &grad_phi = grad_phi_q[q];
-              d.nu                  = nu_q[q];
-              d.grad_phi            = grad_phi;
-              d.H                   = H_q[q];
-              d.Y                   = Y_q[q];
-              d.kappa               = material.bending_rigidity->value(p);
-              d.excess              = H_q[q] - material.spontaneous_curvature->value(p);
+              PointData &d = data[q];
+              d.nu         = nu_q[q];
+              d.grad_phi   = grad_phi_q[q];
+              d.H          = H_q[q];
+              d.Y          = Y_q[q];
               const auto tangents = parameter_tangents(fe_values.jacobian(q), reference_length);
               for (unsigned int k = 0; k < 2; ++k)
                 {
-                  const Tensor<1, spacedim> &a = tangents[k];
-                  d.tangent[k]      = a;
-                  d.unit_tangent[k] = a / a.norm();
-                  d.d_phi[k]   = grad_phi * a;
+                  d.tangent[k]      = tangents[k];
+                  d.unit_tangent[k] = tangents[k] / tangents[k].norm();
                 }
-              // grad psi multiplier: grad_s[kappa (H - H0)] without the H~ part, and
-              // -lap_c kappa_G in weak form, c^ij d_j phi a_i = H_nu grad phi + sym(G) grad phi.
-              const double kappa_slope = material.bending_rigidity->derivative(p);
-              const double H0_slope    = material.spontaneous_curvature->derivative(p);
-              const double H_nu        = -trace(G);
-              d.flux = (d.excess * kappa_slope - d.kappa * H0_slope) * grad_phi +
-                       material.gaussian_rigidity->derivative(p) *
-                         (H_nu * grad_phi + 0.5 * (G * grad_phi + transpose(G) * grad_phi));
-              // psi multiplier: -kappa (H - H0)|grad nu|^2 - sigma xi^2 b^ij d_i phi d_j phi + H G,
-              // with b^ij d_i phi d_j phi = -grad phi . G . grad phi.
-              const double line_density = sigma * (0.5 * xi2 * grad_phi.norm_square() + DoubleWell::value(p));
-              d.source = -d.kappa * d.excess * scalar_product(G, G) + sigma * xi2 * (grad_phi * (G * grad_phi)) +
-                         d.H * line_density;
+              // The energy terms' normal-row coefficients (physics/terms/).
+              point.phi      = phi_q[q];
+              point.H        = H_q[q];
+              point.grad_phi = grad_phi_q[q];
+              point.nu       = nu_q[q];
+              point.grad_nu  = grad_nu_q[q];
+              d.stiffness    = terms.normal_stiffness(point);
+              d.force        = terms.shape_force(point);
               // Thermal force, times tau L_X: standard deviation sqrt(2 k_BT tau L_X / w_q) per component.
               if (noise.active())
                 {
@@ -246,7 +237,7 @@ namespace Membrane
                           if (cj < spacedim)
                             a = v * d.nu[cj] * psi;
                           else if (cj == curvature_component)
-                            a = -tauL * d.kappa * (gv * grad_psi + 0.5 * d.excess * d.excess * v * psi);
+                            a = -tauL * d.stiffness.kappa * (gv * grad_psi + d.stiffness.curvature_mass * v * psi);
                           else if (cj == pressure_component)
                             a = -tauL * d.H * v * psi;
                         }
@@ -278,7 +269,7 @@ namespace Membrane
                   else if (ci == pressure_component) // + a_target - a^m: add_area_defect()
                     b = delta * tauL * d.Y * (d.grad_phi * grad_psi) + delta * (d.noise * grad_psi);
                   else // normal row, + tau L_X (eta, psi nu)
-                    b = tauL * (d.flux * grad_psi + d.source * psi) + (d.noise * d.nu) * psi;
+                    b = tauL * (d.force.flux * grad_psi + d.force.source * psi) + (d.noise * d.nu) * psi;
                   local_rhs(i) += b;
                 }
             }

@@ -1,5 +1,5 @@
-#include <membrane/physics/double_well.h>
 #include <membrane/physics/energy.h>
+#include <membrane/physics/free_energy.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -18,7 +18,8 @@ namespace Membrane
     const unsigned int      n_q = quadrature.size();
     std::vector<double>     phi_values(n_q), H(n_q), K(n_q);
     std::vector<Tensor<1, spacedim>> phi_gradients(n_q);
-    const double sigma = material.line_tension, xi = material.transition_length;
+    const FreeEnergy terms(material);
+    TermPoint        point;
 
     EnergyTerms local;
     for (const auto &cell : scalars.dof_handler().active_cell_iterators())
@@ -31,11 +32,11 @@ namespace Membrane
           fe_values.get_function_values(geometry.gauss_curvature, K);
           for (unsigned int q = 0; q < n_q; ++q)
             {
-              const double ds = fe_values.JxW(q);
-              local.bending += material.bending_density(phi_values[q], H[q]) * ds;
-              local.gaussian += material.gaussian_density(phi_values[q], K[q]) * ds;
-              local.gradient += 0.5 * sigma * xi * xi * phi_gradients[q].norm_square() * ds;
-              local.well += sigma * DoubleWell::value(phi_values[q]) * ds;
+              point.phi      = phi_values[q];
+              point.grad_phi = phi_gradients[q];
+              point.H        = H[q];
+              point.K        = K[q];
+              terms.add_energy(point, fe_values.JxW(q), local);
             }
         }
     const MPI_Comm comm = scalars.communicator();

@@ -1,0 +1,26 @@
+#include <membrane/physics/terms/gaussian.h>
+
+namespace Membrane
+{
+  void GaussianEnergy::add_energy(const TermPoint &point, const double ds, EnergyTerms &energy) const
+  {
+    energy.gaussian += material.gaussian_rigidity->value(point.phi) * point.K * ds;
+  }
+
+  double GaussianEnergy::potential(const TermPoint &point) const
+  {
+    return material.gaussian_rigidity->derivative(point.phi) * point.K; // kappa_G' K
+  }
+
+  void GaussianEnergy::add_shape_force(const TermPoint &point, ShapeForce &force) const
+  {
+    // lap_c[kappa_G] of E_n in weak form, + tau L_X (kappa_G' c^ij d_j phi a_i, grad psi), with
+    // c^ij d_j phi a_i = H_nu grad phi + sym(grad_s nu) grad phi and H_nu = -tr grad_s nu
+    // (from the gradient of the Q1 vertex-normal field; docs/model.md).
+    const auto  &G        = point.grad_nu;
+    const auto  &grad_phi = point.grad_phi;
+    const double H_nu     = -trace(G);
+    force.flux += material.gaussian_rigidity->derivative(point.phi) *
+                  (H_nu * grad_phi + 0.5 * (G * grad_phi + transpose(G) * grad_phi));
+  }
+} // namespace Membrane
