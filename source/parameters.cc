@@ -1,4 +1,5 @@
 #include <membrane/parameters.h>
+#include <membrane/physics/terms/area_difference.h>
 #include <membrane/surface/initial_shapes.h>
 #include <membrane/vesicle_parameters.h>
 
@@ -48,6 +49,7 @@ namespace Membrane
         prm.declare_entry("Phase mobility", "0.05", Patterns::Double(0, max_double),
                           "L_phi: mobility of lateral sorting dphi/dt = L_phi lap_s Y.");
         declare_thermal_parameters(prm);
+        declare_area_difference_parameters(prm);
       }
       prm.leave_subsection();
     }
@@ -319,6 +321,7 @@ namespace Membrane
     material.shape_mobility    = prm.get_double("Shape mobility");
     material.phase_mobility    = prm.get_double("Phase mobility");
     thermal                    = parse_thermal_parameters(prm);
+    material.area_difference   = parse_area_difference_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Time stepping");
@@ -583,6 +586,12 @@ namespace Membrane
                 ExcMessage("Entry <Linear solver/Type> = block preconditions the seven-field shape system: it needs "
                            "<Shape/Curvature mass> = consistent (got lumped; use Type = direct with it)"));
 
+    AssertThrow(!parameters.material.area_difference.active() || parameters.reference.closed(),
+                ExcMessage("Entry <Material/Area difference/Stiffness> = " +
+                           number(parameters.material.area_difference.stiffness) +
+                           " > 0 needs a closed vesicle (<Mesh/Reference surface> = sphere, ellipsoid or a mesh "
+                           "file): the area difference of the monolayers of an open patch is not defined; or set "
+                           "Stiffness = 0"));
     AssertThrow(!parameters.thermal.active() || !parameters.adaptive,
                 ExcMessage("Entry <Material/Temperature> = " + number(parameters.thermal.temperature) +
                            " > 0 needs <Time stepping/Adaptive> = false (a fixed tau: the energy fluctuates, so the "

@@ -34,7 +34,8 @@ namespace Membrane
     const double delta = options.pressure_stabilization;
     // The implicit parts of the energy terms (physics/free_energy.h): the normal row's
     // stiffness on H~ and the tangential law's line stiffness.
-    const FreeEnergy terms(material);
+    FreeEnergy terms(material);
+    terms.prepare(surface, geometry);
     TermPoint        point;
     const double     line_stiffness = options.line_stiffness * tauL * terms.tangential_stiffness_weight();
 

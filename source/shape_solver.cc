@@ -68,7 +68,7 @@ namespace Membrane
                                           update_values | update_gradients);
     const FEValuesExtractors::Vector all_components(0);
 
-    std::vector<double>              phi_q(n_q), H_q(n_q), Y_q(n_q);
+    std::vector<double>              phi_q(n_q), H_q(n_q), K_q(n_q), Y_q(n_q);
     std::vector<Tensor<1, spacedim>> grad_phi_q(n_q), nu_q(n_q);
     std::vector<Tensor<2, spacedim>> grad_nu_q(n_q);
     std::vector<PointData>           data(n_q);
@@ -92,8 +92,9 @@ namespace Membrane
     dealii::Vector<double>           local_rhs(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
 
-    const FreeEnergy terms(material);
-    TermPoint        point;
+    FreeEnergy terms(material);
+    terms.prepare(surface, geometry);
+    TermPoint point;
     const double tauL  = tau * material.shape_mobility;
     const double delta = options.pressure_stabilization;
     // Weight of the linearized gradient energy in the tangential law (see below).
@@ -122,6 +123,7 @@ namespace Membrane
           scalar_values.get_function_values(phi, phi_q);
           scalar_values.get_function_gradients(phi, grad_phi_q);
           scalar_values.get_function_values(geometry.mean_curvature, H_q);
+          scalar_values.get_function_values(geometry.gauss_curvature, K_q);
           scalar_values.get_function_values(potential, Y_q);
           vector_values[all_components].get_function_values(geometry.normal, nu_q);
           vector_values[all_components].get_function_gradients(geometry.normal, grad_nu_q);
@@ -157,6 +159,7 @@ namespace Membrane
               // The energy terms' normal-row coefficients (physics/terms/).
               point.phi      = phi_q[q];
               point.H        = H_q[q];
+              point.K        = K_q[q];
               point.grad_phi = grad_phi_q[q];
               point.nu       = nu_q[q];
               point.grad_nu  = grad_nu_q[q];

@@ -4,6 +4,7 @@
 #include <membrane/io/atomic_file.h>
 #include <membrane/io/checkpoint.h>
 #include <membrane/io/json.h>
+#include <membrane/physics/terms/area_difference.h>
 #include <membrane/simulator.h>
 
 #include <deal.II/base/utilities.h>
@@ -32,6 +33,13 @@ namespace Membrane
     stats.set("gaussian_energy", energy.gaussian);
     stats.set("gradient_energy", energy.gradient);
     stats.set("well_energy", energy.well);
+    if (closed())
+      {
+        // m = -M / (8 pi R_0), M = integral H ds: 1 on a sphere (physics/terms/area_difference.h).
+        const auto [M, A] = total_mean_curvature_and_area(surface, geometry);
+        stats.set("reduced_area_difference", -M / (8 * M_PI * std::sqrt(A / (4 * M_PI))));
+        stats.set("area_difference_energy", energy.area_difference);
+      }
     stats.set("area", area);
     stats.set("area_drift", (area - initial_area) / initial_area);
     stats.set("mass", mass);

@@ -18,8 +18,9 @@ namespace Membrane
     const unsigned int      n_q = quadrature.size();
     std::vector<double>     phi_values(n_q), H(n_q), K(n_q);
     std::vector<Tensor<1, spacedim>> phi_gradients(n_q);
-    const FreeEnergy terms(material);
-    TermPoint        point;
+    FreeEnergy terms(material);
+    terms.prepare(surface, geometry);
+    TermPoint point;
 
     EnergyTerms local;
     for (const auto &cell : scalars.dof_handler().active_cell_iterators())
@@ -45,6 +46,7 @@ namespace Membrane
     sum.gaussian = Utilities::MPI::sum(local.gaussian, comm);
     sum.gradient = Utilities::MPI::sum(local.gradient, comm);
     sum.well     = Utilities::MPI::sum(local.well, comm);
+    terms.add_global_energy(sum);
     return sum;
   }
 } // namespace Membrane

@@ -1,4 +1,5 @@
 #include <membrane/physics/free_energy.h>
+#include <membrane/physics/terms/area_difference.h>
 #include <membrane/physics/terms/bending.h>
 #include <membrane/physics/terms/gaussian.h>
 #include <membrane/physics/terms/line_energy.h>
@@ -11,6 +12,20 @@ namespace Membrane
     terms.push_back(std::make_unique<BendingEnergy>(material));
     terms.push_back(std::make_unique<GaussianEnergy>(material));
     terms.push_back(std::make_unique<LineEnergy>(material));
+    if (material.area_difference.active())
+      terms.push_back(std::make_unique<AreaDifferenceEnergy>(material.area_difference));
+  }
+
+  void FreeEnergy::prepare(const Surface &surface, const Geometry &geometry)
+  {
+    for (const auto &term : terms)
+      term->prepare(surface, geometry);
+  }
+
+  void FreeEnergy::add_global_energy(EnergyTerms &energy) const
+  {
+    for (const auto &term : terms)
+      term->add_global_energy(energy);
   }
 
   void FreeEnergy::add_energy(const TermPoint &point, const double ds, EnergyTerms &energy) const

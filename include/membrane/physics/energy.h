@@ -13,7 +13,8 @@ namespace Membrane
     double gaussian = 0; ///< integral kappa_G K
     double gradient = 0; ///< integral sigma xi^2/2 |grad_s phi|^2
     double well     = 0; ///< integral sigma f(phi)
-    double total() const { return bending + gaussian + gradient + well; }
+    double area_difference = 0; ///< pi k / (2 A) (M - M_0)^2 (closed vesicles, physics/terms/area_difference.h)
+    double total() const { return bending + gaussian + gradient + well + area_difference; }
   };
 
   EnergyTerms compute_energy(const Surface &surface, const Geometry &geometry, const Vector &phi_ghosted,

@@ -19,6 +19,7 @@
 
 #include <membrane/physics/energy.h>
 #include <membrane/physics/material.h>
+#include <membrane/surface/geometry.h>
 
 #include <deal.II/base/tensor.h>
 
@@ -53,10 +54,15 @@ namespace Membrane
   {
   public:
     virtual ~FreeEnergyTerm() = default;
+    /// Global quantities of Gamma^m that the pointwise calls use (collective); once per
+    /// surface, before them.
+    virtual void   prepare(const Surface &, const Geometry &) {}
     /// Adds density * ds to its entries of `energy`.
     virtual void   add_energy(const TermPoint &point, double ds, EnergyTerms &energy) const = 0;
     /// Its explicit part of Y at phi^m (0: none, or treated implicitly by the Cahn-Hilliard step).
     virtual double potential(const TermPoint &) const { return 0; }
+    /// Adds the part of its energy that is not an integral of a density (after the sum over ranks).
+    virtual void   add_global_energy(EnergyTerms &) const {}
     virtual void   add_normal_stiffness(const TermPoint &, NormalStiffness &) const {}
     virtual void   add_shape_force(const TermPoint &, ShapeForce &) const {}
     /// Multiplies Shape/Line stiffness * tau L_X in the tangential law's implicit stiffness.
@@ -69,6 +75,9 @@ namespace Membrane
   public:
     explicit FreeEnergy(const Material &material);
 
+    /// Call once per surface before the pointwise calls (collective).
+    void            prepare(const Surface &surface, const Geometry &geometry);
+    void            add_global_energy(EnergyTerms &energy) const;
     void            add_energy(const TermPoint &point, double ds, EnergyTerms &energy) const;
     double          potential(const TermPoint &point) const;
     NormalStiffness normal_stiffness(const TermPoint &point) const;

@@ -9,6 +9,14 @@
 
 namespace Membrane
 {
+  /// Area-difference elasticity of a closed bilayer (physics/terms/area_difference.h).
+  struct AreaDifferenceOptions
+  {
+    double stiffness          = 0; ///< k = alpha kappa (energy); 0: no term
+    double reduced_difference = 1; ///< m_0
+    bool   active() const { return stiffness > 0; }
+  };
+
   struct Material
   {
     std::unique_ptr<ModulusLaw> bending_rigidity;      ///< kappa(phi)
@@ -18,5 +26,6 @@ namespace Membrane
     double transition_length = 0; ///< xi
     double shape_mobility    = 0; ///< L_X
     double phase_mobility    = 0; ///< L_phi
+    AreaDifferenceOptions area_difference;
   };
 } // namespace Membrane
