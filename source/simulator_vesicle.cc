@@ -1,5 +1,6 @@
 // Closed vesicles in a run (MODEL.md section 8): the reference surface, the volume
 // term of each shape step and the vesicle columns of the statistics. Part of Simulator.
+#include <membrane/analysis/spherical_modes.h>
 #include <membrane/analysis/vesicle_domain.h>
 #include <membrane/simulator.h>
 #include <membrane/surface/closed_surfaces.h>
@@ -10,6 +11,8 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace Membrane
 {
@@ -165,5 +168,10 @@ namespace Membrane
     stats.set("integral_K", integrate(surface, geometry.gauss_curvature));
 
     stats.set("gauss_map_area", gauss_map_area(surface, geometry.normal));
+    // The shape spectrum (analysis/spherical_modes.h): the mean of u_lm^2 over m, which
+    // Milner and Safran predict as k_BT / (kappa (l - 1)(l + 2)(l (l + 1) + Sigma R^2 / kappa)).
+    const std::vector<double> shape_power = spherical_mode_powers(surface, 4);
+    for (unsigned int l = 2; l <= 4; ++l)
+      stats.set("shape_mode_" + std::to_string(l), shape_power[l] / (2 * l + 1));
   }
 } // namespace Membrane
