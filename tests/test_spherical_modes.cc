@@ -7,8 +7,11 @@
 #include <membrane/simulator.h>
 #include <membrane/surface/closed_surfaces.h>
 
+#include <deal.II/base/quadrature_lib.h>
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -115,7 +118,9 @@ TEST(SphericalModes, DisplacedSphereGivesItsAmplitudeAtSecondOrder)
 // bending of Milner and Safran's mode energy. tau is small enough that lambda tau <= 0.03 for
 // l <= 4; the drag factor (0.6 for l = 2) is what this test resolves besides the amplitude. The
 // discrete sphere is not exactly a discrete equilibrium: the noise-free step (its cubic
-// harmonics of O(h^2)) is subtracted. A noise amplitude off by 20 % fails.
+// harmonics of O(h^2)) is subtracted. A noise amplitude off by 20 % fails, and so does a missing
+// drag factor. (On 8 cells per cube edge the observable itself reads u_4m about 5 % low, see the
+// test above: within the tolerance.)
 TEST(SphericalModes, OneShapeStepOnASphereHasTheCovarianceOfTheDissipation)
 {
   const double       kT = 1e-4, mobility = 1, tau = 1e-4, kappa = 1, R = 1;
