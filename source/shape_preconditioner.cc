@@ -1,6 +1,6 @@
 #include <membrane/physics/free_energy.h>
 #include <membrane/shape_preconditioner.h>
-#include <membrane/shape_solver.h>
+#include <membrane/shape_options.h>
 #include <membrane/solvers/cell_assembly.h>
 #include <membrane/solvers/vector_access.h>
 

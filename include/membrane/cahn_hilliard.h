@@ -11,6 +11,7 @@
 //   linearized: S = f''(phi^m), Newton linearisation of f' (accurate, not unconditionally stable);
 //   explicit:   S = 0, the paper's choice (tau limited by the double well).
 
+#include <membrane/cahn_hilliard_options.h>
 #include <membrane/physics/material.h>
 #include <membrane/physics/thermal_noise.h>
 #include <membrane/solvers/linear_solver.h>
@@ -23,12 +24,6 @@
 
 namespace Membrane
 {
-  struct CahnHilliardOptions
-  {
-    std::string scheme        = "stabilized";
-    double      stabilization = 1.5; ///< s (the term is sigma s (phi~ - phi^m))
-  };
-
   class CahnHilliardSolver
   {
   public:

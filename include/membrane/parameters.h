@@ -3,12 +3,13 @@
 // (meaning, scale, the paper's symbol) in a deal.II ParameterHandler.
 
 #include <membrane/analysis/bud_shape.h>
-#include <membrane/cahn_hilliard.h>
+#include <membrane/cahn_hilliard_options.h>
 #include <membrane/physics/initial_phase.h>
 #include <membrane/physics/material.h>
+#include <membrane/physics/thermal_noise.h>
 #include <membrane/physics/volume.h>
-#include <membrane/shape_solver.h>
-#include <membrane/solvers/linear_solver.h>
+#include <membrane/shape_options.h>
+#include <membrane/solvers/linear_solver_options.h>
 #include <membrane/surface/adaptivity.h>
 #include <membrane/surface/closed_surfaces.h>
 

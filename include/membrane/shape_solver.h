@@ -77,6 +77,7 @@
 
 #include <membrane/physics/material.h>
 #include <membrane/physics/thermal_noise.h>
+#include <membrane/shape_options.h>
 #include <membrane/shape_preconditioner.h>
 #include <membrane/solvers/linear_solver.h>
 #include <membrane/surface/geometry.h>
@@ -87,28 +88,6 @@
 
 namespace Membrane
 {
-  /// Mass of the curvature rows (see above); fixed when the ShapeSolver is built.
-  enum class CurvatureMass
-  {
-    consistent,  ///< seven fields, the reference discretization
-    lumped,      ///< five fields: B~ eliminated, the curvature row projected on nu_i
-    lumped_full  ///< seven fields of the lumped scheme (verification of `lumped`)
-  };
-
-  struct ShapeOptions
-  {
-    CurvatureMass curvature_mass  = CurvatureMass::consistent;
-    double pressure_stabilization = 0.5; ///< delta (0: none)
-    double line_stiffness         = 0;   ///< weight of the implicit line-energy stiffness in the tangential law (0: explicit)
-    bool   correct_area           = true;  ///< feed back the defect of the vertex areas
-    unsigned int area_corrections = 1;     ///< projections per step onto the area constraint
-    double area_tolerance         = 1e-12; ///< no projection below this relative defect
-    double area_relaxation_time   = 1e-4;  ///< T_a: a step restores min(1, tau / T_a) of the area defect (0: all)
-    unsigned int tangential_area_iterations = 0; ///< largest number of tangential area-correction moves per step (0: none)
-    double tangential_area_tolerance = 1e-9;  ///< its target: the largest relative vertex-area error
-    bool   correct_mass           = true;  ///< restore integral phi ds after the shape step
-  };
-
   /// Result of one shape step; all vectors owned.
   struct ShapeUpdate
   {

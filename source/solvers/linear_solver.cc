@@ -1,4 +1,4 @@
-#include <membrane/io/out_of_core_directory.h>
+#include <membrane/solvers/out_of_core_directory.h>
 #include <membrane/solvers/linear_solver.h>
 #include <membrane/solvers/petsc_check.h>
 

@@ -1,4 +1,4 @@
-#include <membrane/solvers/projection.h>
+#include <membrane/surface/projection.h>
 #include <membrane/solvers/vector_access.h>
 #include <membrane/surface/geometry.h>
 #include <membrane/surface/grid_control.h>

@@ -1,4 +1,4 @@
-#include <membrane/solvers/projection.h>
+#include <membrane/surface/projection.h>
 #include <membrane/surface/surface.h>
 
 #include <deal.II/base/quadrature_lib.h>

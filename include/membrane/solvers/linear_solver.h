@@ -13,6 +13,7 @@
 //          factorization, at a relative accuracy of about low_rank_tolerance;
 //  gmres:  restarted GMRES with PETSc's block-Jacobi/ILU, for large runs.
 
+#include <membrane/solvers/linear_solver_options.h>
 #include <membrane/types.h>
 
 #include <petscksp.h>
@@ -21,24 +22,6 @@
 
 namespace Membrane
 {
-  struct LinearSolverOptions
-  {
-    std::string  type              = "direct";
-    double       relative_tolerance = 1e-10;
-    unsigned int max_iterations     = 2000;
-    /// direct: GMRES iterations allowed with earlier LU factors before
-    /// refactorizing (0: factorize every matrix).
-    unsigned int reuse_iterations = 0;
-    /// direct with reuse: relative residual reached by those iterations.
-    double reuse_tolerance = 1e-12;
-    /// direct: dropping tolerance of MUMPS' block low-rank factorization (ICNTL(35) = 2,
-    /// CNTL(7)); 0: the exact (full-rank) LU.
-    double low_rank_tolerance = 0;
-    /// direct: MUMPS writes the LU factors to disk (ICNTL(22) = 1) in $MUMPS_OOC_TMPDIR
-    /// (default /tmp) instead of holding them in memory.
-    bool out_of_core = false;
-  };
-
   class LinearSolver
   {
   public:

@@ -1,4 +1,4 @@
-#include <membrane/solvers/projection.h>
+#include <membrane/surface/projection.h>
 #include <membrane/solvers/cell_assembly.h>
 
 #include <deal.II/base/quadrature_lib.h>

@@ -1,4 +1,4 @@
-#include <membrane/io/out_of_core_directory.h>
+#include <membrane/solvers/out_of_core_directory.h>
 
 #include <deal.II/base/exceptions.h>
 
