@@ -127,7 +127,7 @@ TEST(SphericalModes, OneShapeStepOnASphereHasTheCovarianceOfTheDissipation)
   const unsigned int trials = 200, l_max = 4;
   const auto         dir    = std::filesystem::temp_directory_path() / "membrane_spherical_shape_step";
   const auto         one_step = [&](const double temperature, const unsigned int seed) {
-    const Parameters parameters = Testing::make_parameters(R"(
+    const Parameters parameters = Testing::noisy_step_parameters(R"(
 subsection Mesh
   set Reference surface = sphere
   set Cells per side = 8
@@ -135,30 +135,7 @@ end
 subsection Volume
   set Constraint = fixed
 end
-subsection Initial phase
-  set Type = uniform
-  set Uniform value = -1
-end
-subsection Material
-  set Temperature = )" + std::to_string(temperature) + R"(
-  set Noise seed = )" + std::to_string(seed) + R"(
-  set Shape mobility = )" + std::to_string(mobility) + R"(
-  set Line tension = 1
-  set Transition length = 0.2
-end
-subsection Shape
-  set Grid control weight = 0
-end
-subsection Time stepping
-  set Adaptive = false
-  set Time step = )" + std::to_string(tau) + R"(
-  set Maximum steps = 1
-end
-subsection Output
-  set Directory = )" + dir.string() + R"(
-  set Write VTU = false
-end
-)");
+)", temperature, seed, mobility, tau, 0.2, dir.string());
     Simulator simulator(parameters, RunOptions{true, "", "test"});
     simulator.initialize();
     EXPECT_TRUE(simulator.advance());

@@ -139,34 +139,11 @@ TEST(Thermal, OneShapeStepHasTheCovarianceOfTheDissipation)
   std::array<std::vector<double>, 2> height_samples;
   for (unsigned int trial = 0; trial < trials; ++trial)
     {
-      const Parameters parameters = Testing::make_parameters(R"(
+      const Parameters parameters = Testing::noisy_step_parameters(R"(
 subsection Mesh
   set Cells per side = 16
 end
-subsection Initial phase
-  set Type = uniform
-  set Uniform value = -1
-end
-subsection Material
-  set Temperature = )" + std::to_string(kT) + R"(
-  set Noise seed = )" + std::to_string(trial + 1) + R"(
-  set Shape mobility = )" + std::to_string(mobility) + R"(
-  set Line tension = 1
-  set Transition length = 0.1
-end
-subsection Shape
-  set Grid control weight = 0
-end
-subsection Time stepping
-  set Adaptive = false
-  set Time step = )" + std::to_string(tau) + R"(
-  set Maximum steps = 1
-end
-subsection Output
-  set Directory = )" + dir.string() + R"(
-  set Write VTU = false
-end
-)");
+)", kT, trial + 1, mobility, tau, 0.1, dir.string());
       Simulator simulator(parameters, RunOptions{true, "", "test"});
       simulator.initialize();
       ASSERT_TRUE(simulator.advance());

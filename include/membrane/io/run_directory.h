@@ -12,7 +12,7 @@
 //    it does not block a run; --overwrite deletes it with the output files, unless it is
 //    the file this process's stdout or stderr goes to;
 //  - launcher files, written next to a run by whoever started it: case.json and
-//    status.json (a sweep's case records, scripts/membrane_workflow/sweep.py). They
+//    status.json (a sweep's case records, membrane_flow/workflow/sweep.py). They
 //    neither block a run nor are ever deleted;
 //  - foreign: everything else (other files, subdirectories, symbolic links, an output
 //    file's name that is not a regular file).
