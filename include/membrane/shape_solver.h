@@ -17,7 +17,9 @@
 //   curvature:  (H~ nu + B~_1 t_1 + B~_2 t_2, psi_vec) + (grad_s W, grad_s psi_vec) = -(grad_s X^m, grad_s psi_vec)
 //
 // with everything else (H = H^m, K, nu, phi = phi^m, moduli at phi^m, Y of the
-// Cahn-Hilliard step) frozen at t_m. Sign conventions of MODEL.md: H is the sum
+// Cahn-Hilliard step) frozen at t_m. The energy terms' parts of the normal row (the stiffness
+// on H~, the flux and source) come from physics/free_energy.h, one file per term; the
+// velocity, area, pressure, curvature and noise parts are the system's own. Sign conventions of MODEL.md: H is the sum
 // of principal curvatures, b_ij = X_,ij . n, c^ij = H g^ij - b^ij.
 //
 // Discrete choices (documented in docs/model.md):
