@@ -1,0 +1,256 @@
+// The energy terms (physics/free_energy.h): each term's normal force is the derivative of its
+// energy, to discretization error, on ellipsoids under refinement (bending, Gaussian, line energy
+// and area-difference elasticity). Their tangential force, Y grad phi, is the chemical potential's
+// (tests/test_cahn_hilliard.cc and the descent tests).
+//
+// Area-difference elasticity (MODEL.md section 11, physics/terms/area_difference.h).
+// The term's normal force uses dM[V_n n] = -2 integral K V_n ds for M = integral H ds. On
+// ellipsoids, the derivative of the discrete M (the projected mean curvature of the scheme)
+// along a smooth normal move, by central differences, approaches -2 integral K_h V_n ds
+// under refinement; and the energy of a sphere is the closed form pi k / (2 A) (M - M_0)^2
+// with M = -8 pi R.
+#include <membrane/physics/energy.h>
+#include <membrane/physics/free_energy.h>
+#include <membrane/physics/terms/area_difference.h>
+#include <membrane/physics/terms/bending.h>
+#include <membrane/physics/terms/gaussian.h>
+#include <membrane/physics/terms/line_energy.h>
+#include <membrane/surface/closed_surfaces.h>
+#include <membrane/surface/field_space.h>
+#include <membrane/surface/geometry.h>
+#include <membrane/surface/initial_shapes.h>
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+namespace
+{
+  using namespace Membrane;
+
+  ReferenceSurfaceOptions ellipsoid(const unsigned int n)
+  {
+    ReferenceSurfaceOptions options;
+    options.type           = "ellipsoid";
+    options.cells_per_side = n;
+    options.semi_axes      = {{1.3, 1.0, 0.8}};
+    return options;
+  }
+
+  /// The move's normal speed f and the ellipsoid's unit normal at a point of it.
+  double speed(const dealii::Point<spacedim> &x)
+  {
+    return 1 + 0.5 * x[0] + 0.3 * x[1] * x[2];
+  }
+
+  class NormalMove : public dealii::Function<spacedim>
+  {
+  public:
+    NormalMove(const std::array<double, 3> &axes, const double size)
+      : dealii::Function<spacedim>(spacedim)
+      , axes(axes)
+      , size(size)
+    {}
+    double value(const dealii::Point<spacedim> &x, const unsigned int c) const override
+    {
+      dealii::Tensor<1, spacedim> n;
+      for (unsigned int d = 0; d < spacedim; ++d)
+        n[d] = x[d] / (axes[d] * axes[d]);
+      return size * speed(x) * n[c] / n.norm();
+    }
+
+  private:
+    const std::array<double, 3> axes;
+    const double                size;
+  };
+} // namespace
+
+TEST(AreaDifference, ForceIsTheDerivativeOfTheTotalMeanCurvature)
+{
+  std::vector<double> errors;
+  for (const unsigned int n : {4u, 8u, 16u})
+    {
+      const ReferenceSurfaceOptions options = ellipsoid(n);
+      Triangulation                 tria(MPI_COMM_WORLD);
+      make_closed_surface(tria, options);
+      Surface surface(tria, false);
+      surface.setup();
+      const Geometry geometry = compute_geometry(surface);
+      // -2 integral K f ds on the reference ellipsoid.
+      const dealii::QGauss<dim>                 quadrature(3);
+      dealii::FEValues<dim, spacedim>           fe_values(surface.mapping(), surface.scalar_space().fe(), quadrature,
+                                                          dealii::update_values | dealii::update_quadrature_points |
+                                                            dealii::update_JxW_values);
+      std::vector<double>                       K(quadrature.size());
+      double                                    force = 0;
+      for (const auto &cell : surface.scalar_space().dof_handler().active_cell_iterators())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(geometry.gauss_curvature, K);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            force += -2 * K[q] * speed(fe_values.quadrature_point(q)) * fe_values.JxW(q);
+        }
+      const double epsilon = 1e-4;
+      std::array<double, 2> M{};
+      for (const int side : {0, 1})
+        {
+          set_displacement(surface, NormalMove(options.semi_axes, side == 0 ? epsilon : -epsilon));
+          M[side] = total_mean_curvature_and_area(surface, compute_geometry(surface)).first;
+        }
+      const double derivative = (M[0] - M[1]) / (2 * epsilon);
+      errors.push_back(std::abs(derivative - force) / std::abs(force));
+      std::cout << n << " cells per side: dM/deps = " << derivative << ", -2 integral K f ds = " << force
+                << ", relative difference " << errors.back() << std::endl;
+    }
+  const double order = std::log2(errors[1] / errors[2]);
+  std::cout << "observed order " << order << std::endl;
+  EXPECT_GT(order, 1.0);
+  EXPECT_LT(errors.back(), 0.02);
+}
+
+TEST(AreaDifference, SphereEnergyIsTheClosedForm)
+{
+  ReferenceSurfaceOptions options;
+  options.type           = "sphere";
+  options.cells_per_side = 16;
+  options.radius         = 0.8;
+  Triangulation tria(MPI_COMM_WORLD);
+  make_closed_surface(tria, options);
+  Surface surface(tria, false);
+  surface.setup();
+  const Geometry geometry = compute_geometry(surface);
+  Material       material;
+  material.bending_rigidity                 = make_linear_law(1, 1);
+  material.gaussian_rigidity                = make_linear_law(0, 0);
+  material.spontaneous_curvature            = make_linear_law(0, 0);
+  material.area_difference.stiffness        = 3;
+  material.area_difference.reduced_difference = 2;
+  Vector phi = surface.scalar_space().make_ghosted();
+  const EnergyTerms energy = compute_energy(surface, geometry, phi, material);
+  // A = 4 pi R^2, M = -8 pi R, M_0 = -8 pi R m_0: F = pi k / (2 A) (8 pi R (m_0 - 1))^2 = 8 pi^2 k (m_0 - 1)^2.
+  const double expected = 8 * M_PI * M_PI * 3;
+  std::cout << "F_ADE = " << energy.area_difference << ", closed form " << expected << std::endl;
+  EXPECT_NEAR(energy.area_difference / expected, 1, 0.02);
+  EXPECT_NEAR(energy.total(), energy.bending + energy.area_difference, 1e-12);
+}
+
+// Every term's force is the derivative of its energy, to discretization error: along a smooth
+// normal move f n of an ellipsoid carrying a smooth phi (which rides on the vertices), the
+// central difference of the term's discrete energy approaches its first variation as the shape
+// step assembles it at W = 0, H~ = H^m,
+//   dE/d eps = -[kappa ((grad H, grad f) + m (H, f)) + (flux, grad f) + (source, f)]
+// (the normal row's implicit stiffness and explicit force of physics/free_energy.h).
+TEST(EnergyTerms, NormalForcesAreTheDerivativesOfTheirEnergies)
+{
+  // One material per term, with phase-dependent moduli so that the flux parts count too.
+  const auto material_of = [](const std::string &term) {
+    Material m;
+    m.bending_rigidity      = make_linear_law(term == "bending" ? 2.0 : 1.0, term == "bending" ? 1.0 : 1.0);
+    m.spontaneous_curvature = make_linear_law(term == "bending" ? 1.0 : 0.0, term == "bending" ? -1.0 : 0.0);
+    m.gaussian_rigidity     = make_linear_law(term == "gaussian" ? 0.5 : 0.0, term == "gaussian" ? -0.5 : 0.0);
+    m.line_tension          = term == "line" ? 1.0 : 0.0;
+    m.transition_length     = 0.3;
+    return m;
+  };
+  const auto energy_of = [](const std::string &term, const EnergyTerms &e) {
+    return term == "bending" ? e.bending : term == "gaussian" ? e.gaussian : e.gradient + e.well;
+  };
+  for (const std::string term : {"bending", "gaussian", "line"})
+    {
+      std::vector<double> errors;
+      for (const unsigned int n : {4u, 8u, 16u})
+        {
+          const ReferenceSurfaceOptions options = ellipsoid(n);
+          Triangulation                 tria(MPI_COMM_WORLD);
+          make_closed_surface(tria, options);
+          Surface surface(tria, false);
+          surface.setup();
+          const Material material = material_of(term);
+          // phi and f as nodal fields of the reference ellipsoid (phi rides on the vertices).
+          const auto &scalars = surface.scalar_space();
+          Vector      phi_owned = scalars.make_owned(), f_owned = scalars.make_owned();
+          for_each_free_vertex(scalars, [&](const auto &cell, const unsigned int v, const auto &dofs) {
+            phi_owned[dofs[0]] = 0.8 * std::tanh(cell->vertex(v)[0] / 0.4);
+            f_owned[dofs[0]]   = speed(cell->vertex(v));
+          });
+          phi_owned.compress(dealii::VectorOperation::insert);
+          f_owned.compress(dealii::VectorOperation::insert);
+          const Vector phi = scalars.ghosted_copy(phi_owned), f = scalars.ghosted_copy(f_owned);
+
+          const Geometry        geometry = compute_geometry(surface);
+          // The term alone (FreeEnergy would add the others' forces).
+          std::unique_ptr<FreeEnergyTerm> single;
+          if (term == "bending")
+            single = std::make_unique<BendingEnergy>(material);
+          else if (term == "gaussian")
+            single = std::make_unique<GaussianEnergy>(material);
+          else
+            single = std::make_unique<LineEnergy>(material);
+          single->prepare(surface, geometry);
+          const dealii::QGauss<dim>       quadrature(3);
+          dealii::FEValues<dim, spacedim> values(surface.mapping(), scalars.fe(), quadrature,
+                                                 dealii::update_values | dealii::update_gradients |
+                                                   dealii::update_JxW_values);
+          dealii::FEValues<dim, spacedim> vectors(surface.mapping(), surface.vector_space().fe(), quadrature,
+                                                  dealii::update_values | dealii::update_gradients);
+          const unsigned int                              n_q = quadrature.size();
+          std::vector<double>                             phi_q(n_q), H_q(n_q), K_q(n_q), f_q(n_q);
+          std::vector<dealii::Tensor<1, spacedim>>        grad_phi_q(n_q), grad_H_q(n_q), grad_f_q(n_q), nu_q(n_q);
+          std::vector<dealii::Tensor<2, spacedim>>        grad_nu_q(n_q);
+          const dealii::FEValuesExtractors::Vector        all(0);
+          double                                          variation = 0;
+          for (const auto &cell : scalars.dof_handler().active_cell_iterators())
+            {
+              values.reinit(cell);
+              vectors.reinit(surface.vector_space().cell(cell));
+              values.get_function_values(phi, phi_q);
+              values.get_function_gradients(phi, grad_phi_q);
+              values.get_function_values(geometry.mean_curvature, H_q);
+              values.get_function_gradients(geometry.mean_curvature, grad_H_q);
+              values.get_function_values(geometry.gauss_curvature, K_q);
+              values.get_function_values(f, f_q);
+              values.get_function_gradients(f, grad_f_q);
+              vectors[all].get_function_values(geometry.normal, nu_q);
+              vectors[all].get_function_gradients(geometry.normal, grad_nu_q);
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  TermPoint point;
+                  point.phi      = phi_q[q];
+                  point.grad_phi = grad_phi_q[q];
+                  point.H        = H_q[q];
+                  point.K        = K_q[q];
+                  point.nu       = nu_q[q];
+                  point.grad_nu  = grad_nu_q[q];
+                  NormalStiffness stiffness;
+                  ShapeForce      force;
+                  single->add_normal_stiffness(point, stiffness);
+                  single->add_shape_force(point, force);
+                  variation -= (stiffness.kappa *
+                                  (grad_H_q[q] * grad_f_q[q] + stiffness.curvature_mass * H_q[q] * f_q[q]) +
+                                force.flux * grad_f_q[q] + force.source * f_q[q]) *
+                               values.JxW(q);
+                }
+            }
+          const double          epsilon = 1e-4;
+          std::array<double, 2> E{};
+          for (const int side : {0, 1})
+            {
+              set_displacement(surface, NormalMove(options.semi_axes, side == 0 ? epsilon : -epsilon));
+              E[side] = energy_of(term, compute_energy(surface, compute_geometry(surface), phi, material));
+            }
+          const double derivative = (E[0] - E[1]) / (2 * epsilon);
+          errors.push_back(std::abs(derivative - variation) / std::abs(derivative));
+          std::cout << term << ", " << n << " cells per side: dE/deps = " << derivative << ", variation "
+                    << variation << ", relative difference " << errors.back() << std::endl;
+        }
+      const double order = std::log2(errors[1] / errors[2]);
+      std::cout << term << ": observed order " << order << std::endl;
+      EXPECT_GT(order, 1.5) << term; // 2.06 (bending), 1.95 (Gaussian), 2.00 (line)
+      EXPECT_LT(errors.back(), 0.05) << term;
+    }
+}
