@@ -33,15 +33,6 @@ namespace
 {
   using namespace Membrane;
 
-  ReferenceSurfaceOptions ellipsoid(const unsigned int n)
-  {
-    ReferenceSurfaceOptions options;
-    options.type           = "ellipsoid";
-    options.cells_per_side = n;
-    options.semi_axes      = {{1.3, 1.0, 0.8}};
-    return options;
-  }
-
   /// The move's normal speed f and the ellipsoid's unit normal at a point of it.
   double speed(const dealii::Point<spacedim> &x)
   {
@@ -68,6 +59,39 @@ namespace
     const std::array<double, 3> axes;
     const double                size;
   };
+
+  /// The reference ellipsoid with n cells per cube edge, and central differences along the
+  /// normal move f n of a quantity of the surface.
+  struct Ellipsoid
+  {
+    static constexpr std::array<double, 3> semi_axes{{1.3, 1.0, 0.8}};
+    Triangulation                          tria{MPI_COMM_WORLD};
+    Surface                                surface{tria, false};
+
+    explicit Ellipsoid(const unsigned int n)
+    {
+      ReferenceSurfaceOptions options;
+      options.type           = "ellipsoid";
+      options.cells_per_side = n;
+      options.semi_axes      = semi_axes;
+      make_closed_surface(tria, options);
+      surface.setup();
+    }
+
+    /// (q(+eps) - q(-eps)) / (2 eps) with eps = 1e-4; leaves the surface moved by -eps.
+    template <typename Quantity>
+    double derivative_along_move(const Quantity &quantity)
+    {
+      const double          epsilon = 1e-4;
+      std::array<double, 2> values{};
+      for (const int side : {0, 1})
+        {
+          set_displacement(surface, NormalMove(semi_axes, side == 0 ? epsilon : -epsilon));
+          values[side] = quantity(static_cast<const Surface &>(surface));
+        }
+      return (values[0] - values[1]) / (2 * epsilon);
+    }
+  };
 } // namespace
 
 TEST(AreaDifference, ForceIsTheDerivativeOfTheTotalMeanCurvature)
@@ -75,11 +99,8 @@ TEST(AreaDifference, ForceIsTheDerivativeOfTheTotalMeanCurvature)
   std::vector<double> errors;
   for (const unsigned int n : {4u, 8u, 16u})
     {
-      const ReferenceSurfaceOptions options = ellipsoid(n);
-      Triangulation                 tria(MPI_COMM_WORLD);
-      make_closed_surface(tria, options);
-      Surface surface(tria, false);
-      surface.setup();
+      Ellipsoid      ellipsoid(n);
+      Surface       &surface  = ellipsoid.surface;
       const Geometry geometry = compute_geometry(surface);
       // -2 integral K f ds on the reference ellipsoid.
       const dealii::QGauss<dim>                 quadrature(3);
@@ -95,14 +116,9 @@ TEST(AreaDifference, ForceIsTheDerivativeOfTheTotalMeanCurvature)
           for (const unsigned int q : fe_values.quadrature_point_indices())
             force += -2 * K[q] * speed(fe_values.quadrature_point(q)) * fe_values.JxW(q);
         }
-      const double epsilon = 1e-4;
-      std::array<double, 2> M{};
-      for (const int side : {0, 1})
-        {
-          set_displacement(surface, NormalMove(options.semi_axes, side == 0 ? epsilon : -epsilon));
-          M[side] = total_mean_curvature_and_area(surface, compute_geometry(surface)).first;
-        }
-      const double derivative = (M[0] - M[1]) / (2 * epsilon);
+      const double derivative = ellipsoid.derivative_along_move([](const Surface &moved) {
+        return total_mean_curvature_and_area(moved, compute_geometry(moved)).first;
+      });
       errors.push_back(std::abs(derivative - force) / std::abs(force));
       std::cout << n << " cells per side: dM/deps = " << derivative << ", -2 integral K f ds = " << force
                 << ", relative difference " << errors.back() << std::endl;
@@ -165,11 +181,8 @@ TEST(EnergyTerms, NormalForcesAreTheDerivativesOfTheirEnergies)
       std::vector<double> errors;
       for (const unsigned int n : {4u, 8u, 16u})
         {
-          const ReferenceSurfaceOptions options = ellipsoid(n);
-          Triangulation                 tria(MPI_COMM_WORLD);
-          make_closed_surface(tria, options);
-          Surface surface(tria, false);
-          surface.setup();
+          Ellipsoid ellipsoid(n);
+          Surface  &surface = ellipsoid.surface;
           const Material material = material_of(term);
           // phi and f as nodal fields of the reference ellipsoid (phi rides on the vertices).
           const auto &scalars = surface.scalar_space();
@@ -236,14 +249,9 @@ TEST(EnergyTerms, NormalForcesAreTheDerivativesOfTheirEnergies)
                                values.JxW(q);
                 }
             }
-          const double          epsilon = 1e-4;
-          std::array<double, 2> E{};
-          for (const int side : {0, 1})
-            {
-              set_displacement(surface, NormalMove(options.semi_axes, side == 0 ? epsilon : -epsilon));
-              E[side] = energy_of(term, compute_energy(surface, compute_geometry(surface), phi, material));
-            }
-          const double derivative = (E[0] - E[1]) / (2 * epsilon);
+          const double derivative = ellipsoid.derivative_along_move([&](const Surface &moved) {
+            return energy_of(term, compute_energy(moved, compute_geometry(moved), phi, material));
+          });
           errors.push_back(std::abs(derivative - variation) / std::abs(derivative));
           std::cout << term << ", " << n << " cells per side: dE/deps = " << derivative << ", variation "
                     << variation << ", relative difference " << errors.back() << std::endl;

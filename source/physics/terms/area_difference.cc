@@ -1,9 +1,5 @@
 #include <membrane/physics/terms/area_difference.h>
 
-#include <deal.II/base/mpi.h>
-#include <deal.II/base/quadrature_lib.h>
-#include <deal.II/fe/fe_values.h>
-
 #include <cmath>
 
 namespace Membrane
@@ -35,24 +31,7 @@ namespace Membrane
 
   std::pair<double, double> total_mean_curvature_and_area(const Surface &surface, const Geometry &geometry)
   {
-    const FieldSpace       &scalars = surface.scalar_space();
-    const QGauss<dim>       quadrature(2);
-    FEValues<dim, spacedim> fe_values(surface.mapping(), scalars.fe(), quadrature, update_values | update_JxW_values);
-    std::vector<double>     H(quadrature.size());
-    std::vector<double>     sums(2, 0.0);
-    for (const auto &cell : scalars.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values.get_function_values(geometry.mean_curvature, H);
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              sums[0] += H[q] * fe_values.JxW(q);
-              sums[1] += fe_values.JxW(q);
-            }
-        }
-    Utilities::MPI::sum(sums, scalars.communicator(), sums);
-    return {sums[0], sums[1]};
+    return {integrate(surface, geometry.mean_curvature), surface.area()};
   }
 
   void AreaDifferenceEnergy::prepare(const Surface &surface, const Geometry &geometry)
