@@ -1,25 +1,24 @@
 #pragma once
-// A run: builds the periodic patch or a closed vesicle (simulator_vesicle.cc) and its
-// initial state from the parameters,
-// advances the time loop, and writes fields, statistics, the parameters used,
+// A run: builds the periodic patch or a closed vesicle and its initial state from the
+// parameters, advances the time loop, and writes fields, statistics, the parameters used,
 // the code version, checkpoints and a summary into the output directory.
 //
-// One time step m -> m+1 (MODEL.md section 4):
-//   1. Cahn-Hilliard on Gamma^m: phi^m -> (phi~, Y);
-//   2. shape: (X^m, phi^m, Y) -> X~ = X^m + W (ShapeSolver); phi~ rides on the vertices;
-//      then projections of X~ back onto the local area constraint (same operator);
-//   3. grid control: tangential vertex smoothing with ALE remap of phi~ -> phi^{m+1}
-//      (the reference vertex areas follow the vertices);
-//   4. geometry and energy F^{m+1} of Gamma^{m+1}. If the moved state would raise
-//      the energy above F^m, the move is discarded and X^{m+1} = X~, phi^{m+1} = phi~
-//      (its geometry computed instead); the step descends either way;
-//   5. cell quality of Gamma^{m+1}.
-// With adaptive stepping a step is rejected (state restored, tau halved) when F
-// would rise, a cell would fold or invert, or a solve fails; easy steps let tau grow.
-//
-// The members are defined in simulator.cc (set-up, resume, the time loop),
-// simulator_step.cc (one trial step), simulator_output.cc (statistics, progress,
-// checkpoints, run records) and simulator_adaptation.cc (mesh adaptation).
+// One time step m -> m+1 (MODEL.md section 4), one file per stage under source/simulator/:
+//   1. phase step: Cahn-Hilliard on Gamma^m, phi^m -> (phi~, Y)          phase_step.cc
+//   2. shape step: (X^m, phi^m, Y) -> X~ = X^m + W (ShapeSolver)           shape_step.cc
+//   3. area and volume restoration: projections of X~ back onto the local
+//      area constraint and a fixed volume (same operator); phi~ rides on
+//      the vertices and integral phi ds is restored                        constraint_restoration.cc
+//   4. grid control: tangential vertex smoothing with the ALE remap of phi~
+//      -> phi^{m+1} (the reference vertex areas follow the vertices), then
+//      geometry and energy F^{m+1}. If the moved state would raise the energy
+//      above F^m, the move is discarded and X^{m+1} = X~, phi^{m+1} = phi~    grid_control_step.cc
+//   5. acceptance: with adaptive stepping a step is rejected (state restored,
+//      tau reduced) when F would rise, a cell would fold, a vertex move too far,
+//      the local error exceed its tolerance, or a solve fail                step_acceptance.cc
+// The time loop and the sequence of the stages are in time_loop.cc; between accepted steps
+// come mesh adaptation (adaptation.cc) and output (output.cc); set-up and resume are in
+// setup.cc, the messages of a run in trouble in diagnostics.cc.
 
 #include <membrane/analysis/bud_shape.h>
 #include <membrane/cahn_hilliard.h>
@@ -105,9 +104,6 @@ namespace Membrane
       std::string message; ///< for the log and the stop reason
       bool        empty() const { return kind.empty(); }
     };
-    /// A number with 4 significant digits, for messages.
-    static std::string format(double value);
-
     /// What a rejected step (or a discarded grid move) restores.
     struct State
     {
@@ -117,82 +113,115 @@ namespace Membrane
       Geometry    geometry;
       EnergyTerms energy;
     };
-    State save_state() const;
-    void  restore_state(const State &state);
-
-    void      setup();
-    void      set_initial_state();
-    void      resume();
-    void      warn_if_unresolved() const;
+    // The time loop (time_loop.cc): run(), initialize(), advance(), finish() above, and one
+    // trial step as the sequence of its stages; a rejected trial restores the State.
+    State     save_state() const;
+    void      restore_state(const State &state);
     Rejection try_step(double tau);
-    /// The local error estimate of the trial step: half the change of its increment
-    /// against the previous step's velocity, in cells for the shape and absolute for phi.
-    double    local_error(double tau) const;
-    /// Shape step and its area projections; false if a solve gave non-finite values.
-    bool      move_shape(double tau, const Vector &phi_new);
+    bool      end_time_reached() const;
+
+    // Set-up (setup.cc): the reference surface (periodic patch or closed surface), the
+    // spaces and solvers, the initial state or the state of a checkpoint.
+    void setup();
+    void make_reference_surface();
+    void set_initial_state();
+    void resume();
+
+    // Stage 1, the phase step (phase_step.cc): Cahn-Hilliard phi^m -> (phi~, Y) into phi_new
+    // and chemical_potential; false if phi~ is not finite or |phi~| > 10.
+    bool phase_step(double tau, Vector &phi_new);
     /// The thermal noise of the step being taken (keyed by the step index, so that a
     /// retried or resumed step draws the same variates).
     ThermalNoise noise_of_step() const;
-    /// Grid control of the Lagrangian state X~, kept if F^{m+1} <= F^m (always at k_BT > 0).
-    void      control_grid(double energy_before, double tau);
+
+    // Stage 2, the shape step (shape_step.cc): X~ = X^m + W aiming at the vertex areas
+    // `target`; gamma receives the pressure. false if the solve gave non-finite values.
+    bool shape_step(double tau, const Vector &areas_before, const Vector &target, Vector &gamma);
+    /// Adds a shape increment to the surface; false (and nothing added) if it is not finite.
+    bool add_shape_increment(const ShapeUpdate &part);
+
+    // Stage 3, area and volume restoration (constraint_restoration.cc).
     /// The vertex areas a step of length tau aims at from the current ones a^m:
     /// a^m + theta (a_ref - a^m), theta = min(1, tau / <Shape/Area relaxation time>)
     /// (a^m itself if the area is not corrected).
-    Vector    area_target(double tau, const Vector &areas) const;
-    /// Mesh adaptation (simulator_adaptation.cc): mark, transfer the state, set up the
-    /// solvers on the new mesh; false if no cell was flagged.
-    /// Every Adaptivity interval accepted steps, and whenever the interface or the
-    /// curvature leaves the refined band (leaves_resolved_band()); collective.
-    bool      adaptation_due() const;
-    bool      adapt_mesh();
-    /// false (and a warning, once) when refining n_refine cells would not fit in the
-    /// available memory; collective.
-    bool      refinement_fits(unsigned int n_refine);
-    /// For a failed or stalled run: a note when the mesh does not resolve the curvature.
-    std::string curvature_resolution_note() const;
-    /// For a failed or stalled run whose steps raise the energy: a note when tau is near the
-    /// explicit limit h^2 / (L_X sigma) of the phase force and Shape/Line stiffness is off.
-    std::string line_stiffness_note(const Rejection &last, double tau) const;
-    /// Refine the initial mesh where the initial state asks for it (up to the maximum
-    /// level), setting the initial state anew on each mesh.
-    void      adapt_initial_mesh();
+    Vector area_target(double tau, const Vector &areas) const;
+    /// Projections of X~ back onto the area target and a fixed volume (same operator), the
+    /// tangential area correction; gamma gains their pressures and becomes `pressure`.
+    bool   restore_areas_and_volume(double tau, const Vector &target, Vector &gamma);
+    /// phi = phi~ riding on the moved vertices, with integral phi ds restored by a constant.
+    void   restore_mass(const Vector &phi_new);
     /// a_ref,i / a_i as a ghosted nodal field; carry_reference_areas() is its inverse
     /// on another mesh or surface (the total reference area kept exactly). Used by
     /// grid control and mesh adaptation alike.
-    Vector       area_ratio() const;
-    void         carry_reference_areas(const Vector &ratio_owned);
-    /// Refinement level of the finest cell above the input mesh.
-    unsigned int finest_level() const;
-    /// Closed surfaces (simulator_vesicle.cc): build the reference mesh (periodic patch
-    /// or closed surface), the volume term of a shape step or of its projection (target
-    /// at t_{m+1} = time + tau), and the vesicle columns of the statistics.
-    bool           closed() const { return parameters.reference.closed(); }
-    void           make_reference_surface();
-    VolumeCoupling volume_term(double tau) const;
+    Vector area_ratio() const;
+    void   carry_reference_areas(const Vector &ratio_owned);
     /// A closed surface whose volume is fixed or under a prescribed pressure (volume_term()
     /// is active) / fixed; unlike volume_term() these do not measure the volume.
     bool           volume_constrained() const;
     bool           volume_fixed() const;
-    void           record_vesicle_statistics();
-    /// The domain observables of a vesicle (analysis/vesicle_domain.h) as a BudShape.
-    BudShape       measure_vesicle_bud() const;
-    /// After grid control: a uniform normal shift alpha nu (Newton on alpha) puts V back on
-    /// V_target(t_{m+1}); a constant restores integral phi ds.
-    void           restore_volume();
+    /// The volume term of a shape step or of its projection (target at t_{m+1} = time + tau).
+    VolumeCoupling volume_term(double tau) const;
     /// The work integral p dV done on the membrane by the shape step just made (from
     /// the volume before it and the pressure of the previous step); 0 without a volume term.
     double         pressure_work_of_step(double volume_before, double pressure_before) const;
+    /// After grid control: a uniform normal shift alpha nu (Newton on alpha) puts V back on
+    /// V_target(t_{m+1}); a constant restores integral phi ds.
+    void           restore_volume();
+
+    // Stage 4, grid control (grid_control_step.cc): tangential smoothing of X~ with the ALE
+    // remap of phi, kept if F^{m+1} <= F^m (always at k_BT > 0); then geometry and energy.
+    void control_grid(double energy_before, double tau);
+
+    // Stage 5, acceptance and step control (step_acceptance.cc).
+    /// Why the trial step just made is rejected (empty: accepted).
+    Rejection judge_step(double tau, double energy_before);
+    /// The local error estimate of the trial step: half the change of its increment
+    /// against the previous step's velocity, in cells for the shape and absolute for phi.
+    double    local_error(double tau) const;
     /// Size of the finest cells of the input mesh (the patch: 1 / (Cells per side 2^level)),
     /// the scale of shape increments for step control.
-    double         reference_cell_size() const;
-    void      record_statistics(double tau);
-    void      write_checkpoint() const;
-    void      write_run_info() const;
-    void      write_summary(const RunResult &result, double wall_seconds) const;
-    void      report_progress(bool force);
+    double    reference_cell_size() const;
+
+    // Mesh adaptation between accepted steps (adaptation.cc): mark, transfer the state, set
+    // up the solvers on the new mesh.
+    /// Every Adaptivity interval accepted steps, and whenever the interface or the
+    /// curvature leaves the refined band (leaves_resolved_band()); collective.
+    bool         adaptation_due() const;
+    /// false if no cell was flagged.
+    bool         adapt_mesh();
+    /// Refine the initial mesh where the initial state asks for it (up to the maximum
+    /// level), setting the initial state anew on each mesh.
+    void         adapt_initial_mesh();
+    /// false (and a warning, once) when refining n_refine cells would not fit in the
+    /// available memory; collective.
+    bool         refinement_fits(unsigned int n_refine);
+    /// Refinement level of the finest cell above the input mesh.
+    unsigned int finest_level() const;
+
+    // Output (output.cc): statistics, progress, snapshots, checkpoints and run records.
+    void     record_statistics(double tau);
+    /// The vesicle columns of the statistics.
+    void     record_vesicle_statistics();
+    /// The domain observables of a vesicle (analysis/vesicle_domain.h) as a BudShape.
+    BudShape measure_vesicle_bud() const;
+    void     report_progress(bool force);
     /// A snapshot of the fields (once per step at most).
-    void      write_fields();
-    bool      end_time_reached() const;
+    void     write_fields();
+    void     write_checkpoint() const;
+    void     write_run_info() const;
+    void     write_summary(const RunResult &result, double wall_seconds) const;
+
+    // Diagnostics (diagnostics.cc).
+    /// A number with 4 significant digits, for messages.
+    static std::string format(double value);
+    void               warn_if_unresolved() const;
+    /// For a failed or stalled run: a note when the mesh does not resolve the curvature.
+    std::string        curvature_resolution_note() const;
+    /// For a failed or stalled run whose steps raise the energy: a note when tau is near the
+    /// explicit limit h^2 / (L_X sigma) of the phase force and Shape/Line stiffness is off.
+    std::string        line_stiffness_note(const Rejection &last, double tau) const;
+
+    bool closed() const { return parameters.reference.closed(); }
 
     const Parameters &parameters;
     const RunOptions  options;

@@ -1,5 +1,5 @@
-// Mesh adaptation of a run (MODEL.md section 9): marking, transfer of the state to
-// the new mesh, and what must survive it exactly. Part of Simulator.
+// Stage: mesh adaptation (MODEL.md section 9), between accepted steps. Marking, transfer of the
+// state to the new mesh, the placement of new vertices and the memory guard. Part of Simulator.
 #include <membrane/io/memory.h>
 #include <membrane/simulator.h>
 #include <membrane/solvers/vector_access.h>
@@ -76,75 +76,6 @@ namespace Membrane
       vectors.constraints().distribute(displacement_owned);
     }
   } // namespace
-
-  Vector Simulator::area_ratio() const
-  {
-    // a_ref,i / a_i as a nodal field (1 up to the local area error), so that the
-    // reference area can follow the vertices through a change of the mesh.
-    const Vector areas = vertex_areas(surface);
-    Vector       ratio = surface.scalar_space().make_owned();
-    {
-      const LocalValues area(areas), reference(reference_areas);
-      OwnedValues       values(ratio);
-      for (const auto i : ratio.locally_owned_elements())
-        values[i] = area[i] > 0 ? reference[i] / area[i] : 1.0;
-    }
-    ratio.compress(VectorOperation::insert);
-    surface.scalar_space().constraints().distribute(ratio);
-    return surface.scalar_space().ghosted_copy(ratio);
-  }
-
-  void Simulator::carry_reference_areas(const Vector &ratio_owned)
-  {
-    Vector carried = vertex_areas(surface);
-    {
-      const LocalValues ratio(ratio_owned);
-      OwnedValues       values(carried);
-      for (const auto i : carried.locally_owned_elements())
-        values[i] *= ratio[i];
-    }
-    carried.compress(VectorOperation::insert);
-    const double total = carried.mean_value() * carried.size();
-    if (total > 0)
-      carried *= initial_area / total; // the total reference area is kept exactly
-    reference_areas = carried;
-  }
-
-  unsigned int Simulator::finest_level() const
-  {
-    unsigned int local = 0;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        local = std::max(local, static_cast<unsigned int>(cell->level()));
-    return Utilities::MPI::max(local, communicator) - base_level;
-  }
-
-  bool Simulator::refinement_fits(const unsigned int n_refine)
-  {
-    if (n_refine == 0 || (!options.check_memory && parameters.adaptivity.memory_limit <= 0))
-      return true;
-    // The memory of a run grows about in proportion to its cells (matrices, LU factors,
-    // vectors); a refined cell becomes four. Scale what the ranks use now, less a
-    // process's own fixed part (libraries, MPI; as in estimate_memory()).
-    const double fixed_part = 200e6;
-    const double resident   = Utilities::MPI::sum(std::max(resident_memory(), 0.0), communicator);
-    const double variable   = Utilities::MPI::sum(std::max(resident_memory() - fixed_part, 0.0), communicator);
-    const double growth     = variable * 3.0 * n_refine / triangulation.n_global_active_cells();
-    const double limit      = parameters.adaptivity.memory_limit;
-    const double available  = limit > 0 ? limit - resident : available_memory(communicator);
-    if ((limit <= 0 && available < 0) || growth <= (limit > 0 ? 1.0 : 0.8) * available)
-      return true;
-    if (!memory_warning_given)
-      pcout << "Warning: at t = " << time << " refining " << n_refine << " cells would need about "
-            << format_bytes(growth) << " more memory, and only " << format_bytes(std::max(available, 0.0))
-            << (limit > 0 ? " is left below <Mesh/Refinement memory limit>" : " is available (MemAvailable in /proc/meminfo)")
-            << ". The mesh is not refined further while that holds "
-            << "(coarsening goes on); the results are those of a coarser mesh than <Mesh/Maximum refinement level> "
-            << "asks for. Run on more machines with mpirun, lower the level, raise the limit, or skip this check with "
-            << "--no-memory-check.\n";
-    memory_warning_given = true;
-    return false;
-  }
 
   bool Simulator::adaptation_due() const
   {
@@ -244,10 +175,7 @@ namespace Membrane
             << '\n';
     return true;
   }
-} // namespace Membrane
 
-namespace Membrane
-{
   void Simulator::adapt_initial_mesh()
   {
     if (!parameters.adaptivity.enabled())
@@ -272,5 +200,41 @@ namespace Membrane
       }
     pcout << "Initial mesh: " << triangulation.n_global_active_cells() << " cells, finest level "
           << finest_level() << " above the input mesh\n";
+  }
+
+  bool Simulator::refinement_fits(const unsigned int n_refine)
+  {
+    if (n_refine == 0 || (!options.check_memory && parameters.adaptivity.memory_limit <= 0))
+      return true;
+    // The memory of a run grows about in proportion to its cells (matrices, LU factors,
+    // vectors); a refined cell becomes four. Scale what the ranks use now, less a
+    // process's own fixed part (libraries, MPI; as in estimate_memory()).
+    const double fixed_part = 200e6;
+    const double resident   = Utilities::MPI::sum(std::max(resident_memory(), 0.0), communicator);
+    const double variable   = Utilities::MPI::sum(std::max(resident_memory() - fixed_part, 0.0), communicator);
+    const double growth     = variable * 3.0 * n_refine / triangulation.n_global_active_cells();
+    const double limit      = parameters.adaptivity.memory_limit;
+    const double available  = limit > 0 ? limit - resident : available_memory(communicator);
+    if ((limit <= 0 && available < 0) || growth <= (limit > 0 ? 1.0 : 0.8) * available)
+      return true;
+    if (!memory_warning_given)
+      pcout << "Warning: at t = " << time << " refining " << n_refine << " cells would need about "
+            << format_bytes(growth) << " more memory, and only " << format_bytes(std::max(available, 0.0))
+            << (limit > 0 ? " is left below <Mesh/Refinement memory limit>" : " is available (MemAvailable in /proc/meminfo)")
+            << ". The mesh is not refined further while that holds "
+            << "(coarsening goes on); the results are those of a coarser mesh than <Mesh/Maximum refinement level> "
+            << "asks for. Run on more machines with mpirun, lower the level, raise the limit, or skip this check with "
+            << "--no-memory-check.\n";
+    memory_warning_given = true;
+    return false;
+  }
+
+  unsigned int Simulator::finest_level() const
+  {
+    unsigned int local = 0;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        local = std::max(local, static_cast<unsigned int>(cell->level()));
+    return Utilities::MPI::max(local, communicator) - base_level;
   }
 } // namespace Membrane

@@ -1,18 +1,28 @@
-// What a run writes: the statistics row of each step, the progress line, checkpoints
-// and the run's records (run_info.json, summary.json). Part of Simulator.
+// Stage: output. The statistics row of each accepted step (with the patch spectra or the
+// vesicle columns), the progress line, field snapshots, checkpoints and the run records
+// (run_info.json, summary.json). Part of Simulator.
 #include <membrane/analysis/fourier_modes.h>
+#include <membrane/analysis/spherical_modes.h>
+#include <membrane/analysis/vesicle_domain.h>
 #include <membrane/io/atomic_file.h>
 #include <membrane/io/checkpoint.h>
+#include <membrane/io/field_output.h>
 #include <membrane/io/json.h>
 #include <membrane/physics/terms/area_difference.h>
 #include <membrane/simulator.h>
+#include <membrane/solvers/vector_access.h>
+#include <membrane/surface/gauss_map.h>
 
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
+#include <deal.II/fe/fe_values.h>
 
 #include <algorithm>
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace Membrane
 {
@@ -94,6 +104,62 @@ namespace Membrane
     stats.end_row();
   }
 
+  void Simulator::record_vesicle_statistics()
+  {
+    // The mean normal stress jump p + <H gamma>: on a sphere, where a uniform surface
+    // tension and the pressure are interchangeable (the local area constraint fixes the
+    // volume too), it is the Laplace pressure dF/dR / dV/dR of MODEL.md section 8.
+    const FieldSpace       &scalars = surface.scalar_space();
+    const QGauss<dim>       quadrature(2);
+    FEValues<dim, spacedim> fe_values(surface.mapping(), scalars.fe(), quadrature, update_values | update_JxW_values);
+    std::vector<double>     H(quadrature.size()), gamma(quadrature.size());
+    double                  local = 0;
+    for (const auto &cell : scalars.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(geometry.mean_curvature, H);
+          fe_values.get_function_values(pressure, gamma);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            local += H[q] * gamma[q] * fe_values.JxW(q);
+        }
+    const double area        = surface.area();
+    const double tension_jump = Utilities::MPI::sum(local, communicator) / area;
+    const double volume      = enclosed_volume(surface);
+    const double target      = parameters.volume.constraint == "fixed"
+                                 ? target_volume(parameters.volume, initial_volume, initial_area, time)
+                                 : initial_volume;
+    stats.set("volume", volume);
+    stats.set("volume_drift", (volume - target) / initial_volume);
+    stats.set("reduced_volume", reduced_volume(volume, area));
+    stats.set("pressure", volume_pressure);
+    stats.set("pressure_work", pressure_work);
+    stats.set("laplace_pressure", volume_pressure + tension_jump);
+    stats.set("volume_compliance", parameters.volume.constraint == "free" ? 1.0 : shape_solver.volume_compliance());
+    stats.set("integral_K", integrate(surface, geometry.gauss_curvature));
+
+    stats.set("gauss_map_area", gauss_map_area(surface, geometry.normal));
+    // The shape spectrum (analysis/spherical_modes.h): the mean of u_lm^2 over m, which
+    // Milner and Safran predict as k_BT / (kappa (l - 1)(l + 2)(l (l + 1) + Sigma R^2 / kappa)).
+    const std::vector<double> shape_power = spherical_mode_powers(surface, 4);
+    for (unsigned int l = 2; l <= 4; ++l)
+      stats.set("shape_mode_" + std::to_string(l), shape_power[l] / (2 * l + 1));
+  }
+
+  BudShape Simulator::measure_vesicle_bud() const
+  {
+    // The patch's height has no meaning on a vesicle; the domain protrusion and the neck,
+    // measured along the vesicle's domain axis, feed the outcome classification.
+    const VesicleDomain domain = measure_vesicle_domain(surface, phi);
+    BudShape            shape;
+    shape.domain_area       = domain.domain_area;
+    shape.domain_protrusion = domain.protrusion;
+    shape.neck_radius       = domain.neck_radius;
+    shape.bud_radius        = domain.bud_radius;
+    shape.neck_ratio        = domain.neck_ratio;
+    return shape;
+  }
+
   void Simulator::report_progress(const bool force)
   {
     const double now = wall.wall_time();
@@ -113,6 +179,29 @@ namespace Membrane
     if (rate > 0 && done < 1)
       line << ", ETA " << (parameters.end_time - time) / rate << " s";
     pcout << line.str() << std::endl;
+  }
+
+  void Simulator::write_fields()
+  {
+    if (!parameters.write_vtu || last_written == step)
+      return;
+    last_written = step;
+    TimerOutput::Scope scope(timer, "output");
+    // The local area error a_i / a_ref,i - 1 of every vertex (statistics.txt has its maximum).
+    const Vector areas      = vertex_areas(surface);
+    Vector       area_error = surface.scalar_space().make_owned();
+    {
+      const LocalValues area(areas), reference(reference_areas);
+      OwnedValues       error(area_error);
+      for (const auto i : area_error.locally_owned_elements())
+        error[i] = reference[i] > 0 ? area[i] / reference[i] - 1 : 0.0;
+    }
+    area_error.compress(VectorOperation::insert);
+    surface.scalar_space().constraints().distribute(area_error);
+    const Vector area_error_ghosted = surface.scalar_space().ghosted_copy(area_error);
+    output->write(surface, geometry,
+                  {{"phi", &phi}, {"Y", &chemical_potential}, {"gamma", &pressure}, {"area_error", &area_error_ghosted}},
+                  time, step);
   }
 
   void Simulator::write_checkpoint() const
