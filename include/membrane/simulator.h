@@ -22,6 +22,7 @@
 
 #include <membrane/analysis/bud_shape.h>
 #include <membrane/cahn_hilliard.h>
+#include <membrane/membrane_topology.h>
 #include <membrane/io/statistics.h>
 #include <membrane/parameters.h>
 #include <membrane/physics/energy.h>
@@ -120,10 +121,9 @@ namespace Membrane
     Rejection try_step(double tau);
     bool      end_time_reached() const;
 
-    // Set-up (setup.cc): the reference surface (periodic patch or closed surface), the
-    // spaces and solvers, the initial state or the state of a checkpoint.
+    // Set-up (setup.cc): the input mesh (from the topology), the spaces and solvers, the
+    // initial state or the state of a checkpoint.
     void setup();
-    void make_reference_surface();
     void set_initial_state();
     void resume();
 
@@ -200,10 +200,9 @@ namespace Membrane
 
     // Output (output.cc): statistics, progress, snapshots, checkpoints and run records.
     void     record_statistics(double tau);
-    /// The vesicle columns of the statistics.
-    void     record_vesicle_statistics();
-    /// The domain observables of a vesicle (analysis/vesicle_domain.h) as a BudShape.
-    BudShape measure_vesicle_bud() const;
+    /// The columns of an enclosed volume: V, its drift, v, the pressure and its work, the
+    /// Laplace pressure, the volume compliance.
+    void     record_volume_statistics();
     void     report_progress(bool force);
     /// A snapshot of the fields (once per step at most).
     void     write_fields();
@@ -221,14 +220,14 @@ namespace Membrane
     /// explicit limit h^2 / (L_X sigma) of the phase force and Shape/Line stiffness is off.
     std::string        line_stiffness_note(const Rejection &last, double tau) const;
 
-    bool closed() const { return parameters.reference.closed(); }
-
     const Parameters &parameters;
     const RunOptions  options;
     MPI_Comm          communicator;
     dealii::ConditionalOStream pcout;
     mutable dealii::TimerOutput timer;
 
+    /// The periodic patch or a closed vesicle: what differs between them.
+    std::unique_ptr<MembraneTopology> topology;
     Triangulation      triangulation;
     Surface            surface;
     CahnHilliardSolver cahn_hilliard;
@@ -250,9 +249,8 @@ namespace Membrane
     std::map<std::string, unsigned int> rejections;
     /// Observables of the last accepted step, for the statistics.
     double max_increment = 0, remap_correction = 0, cell_quality = 1, area_error = 0, shape_mass_correction = 0;
-    /// Closed surfaces: V_0, the volume pressure p of the last step (step and projections),
-    /// and the mean cell size of the input mesh.
-    double initial_volume = 0, volume_pressure = 0, input_cell_size = 0;
+    /// Closed surfaces: V_0 and the volume pressure p of the last step (step and projections).
+    double initial_volume = 0, volume_pressure = 0;
     /// The work integral p dV done on the membrane by the volume term: in the trial step,
     /// and summed over the run (F - pressure_work never increases).
     double step_pressure_work = 0, pressure_work = 0;

@@ -154,12 +154,12 @@ namespace Membrane
 
   bool Simulator::volume_constrained() const
   {
-    return closed() && parameters.volume.constraint != "free";
+    return topology->encloses_volume() && parameters.volume.constraint != "free";
   }
 
   bool Simulator::volume_fixed() const
   {
-    return closed() && parameters.volume.constraint == "fixed";
+    return topology->encloses_volume() && parameters.volume.constraint == "fixed";
   }
 
   VolumeCoupling Simulator::volume_term(const double tau) const

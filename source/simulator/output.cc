@@ -1,17 +1,12 @@
 // Stage: output. The statistics row of each accepted step (with the patch spectra or the
 // vesicle columns), the progress line, field snapshots, checkpoints and the run records
 // (run_info.json, summary.json). Part of Simulator.
-#include <membrane/analysis/fourier_modes.h>
-#include <membrane/analysis/spherical_modes.h>
-#include <membrane/analysis/vesicle_domain.h>
 #include <membrane/io/atomic_file.h>
 #include <membrane/io/checkpoint.h>
 #include <membrane/io/field_output.h>
 #include <membrane/io/json.h>
-#include <membrane/physics/terms/area_difference.h>
 #include <membrane/simulator.h>
 #include <membrane/solvers/vector_access.h>
-#include <membrane/surface/gauss_map.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/utilities.h>
@@ -34,7 +29,7 @@ namespace Membrane
     const double area = surface.area();
     const double mass = integrate(surface, phi);
     area_error        = max_relative_difference(vertex_areas(surface), reference_areas);
-    bud = closed() ? measure_vesicle_bud() : measure_bud(surface, phi);
+    bud = topology->measure_domain(surface, phi);
     stats.set("step", step);
     stats.set("time", time);
     stats.set("tau", tau_used);
@@ -43,13 +38,6 @@ namespace Membrane
     stats.set("gaussian_energy", energy.gaussian);
     stats.set("gradient_energy", energy.gradient);
     stats.set("well_energy", energy.well);
-    if (closed())
-      {
-        // m = -M / (8 pi R_0), M = integral H ds: 1 on a sphere (physics/terms/area_difference.h).
-        const auto [M, A] = total_mean_curvature_and_area(surface, geometry);
-        stats.set("reduced_area_difference", -M / (8 * M_PI * std::sqrt(A / (4 * M_PI))));
-        stats.set("area_difference_energy", energy.area_difference);
-      }
     stats.set("area", area);
     stats.set("area_drift", (area - initial_area) / initial_area);
     stats.set("mass", mass);
@@ -88,23 +76,13 @@ namespace Membrane
     stats.set("adaptations", adaptations);
     stats.set("adaptation_energy_jump", adaptation_energy_jump);
     stats.set("wall_seconds", earlier_wall_seconds + wall.wall_time());
-    if (closed())
-      record_vesicle_statistics();
-    else
-      {
-        // Spectra of the patch (analysis/fourier_modes.h): <|h_k|^2> and <|phi_k|^2> over the
-        // shells |k|^2 = 1 and 2.
-        const LowestModes height = lowest_mode_powers(surface.vector_space(), surface.displacement(), 2);
-        const LowestModes phase  = lowest_mode_powers(surface.scalar_space(), phi, 0);
-        stats.set("height_mode_1", height.shell_1);
-        stats.set("height_mode_2", height.shell_2);
-        stats.set("phase_mode_1", phase.shell_1);
-        stats.set("phase_mode_2", phase.shell_2);
-      }
+    if (topology->encloses_volume())
+      record_volume_statistics();
+    topology->record_shape_statistics(surface, geometry, phi, energy, stats);
     stats.end_row();
   }
 
-  void Simulator::record_vesicle_statistics()
+  void Simulator::record_volume_statistics()
   {
     // The mean normal stress jump p + <H gamma>: on a sphere, where a uniform surface
     // tension and the pressure are interchangeable (the local area constraint fixes the
@@ -136,28 +114,6 @@ namespace Membrane
     stats.set("pressure_work", pressure_work);
     stats.set("laplace_pressure", volume_pressure + tension_jump);
     stats.set("volume_compliance", parameters.volume.constraint == "free" ? 1.0 : shape_solver.volume_compliance());
-    stats.set("integral_K", integrate(surface, geometry.gauss_curvature));
-
-    stats.set("gauss_map_area", gauss_map_area(surface, geometry.normal));
-    // The shape spectrum (analysis/spherical_modes.h): the mean of u_lm^2 over m, which
-    // Milner and Safran predict as k_BT / (kappa (l - 1)(l + 2)(l (l + 1) + Sigma R^2 / kappa)).
-    const std::vector<double> shape_power = spherical_mode_powers(surface, 4);
-    for (unsigned int l = 2; l <= 4; ++l)
-      stats.set("shape_mode_" + std::to_string(l), shape_power[l] / (2 * l + 1));
-  }
-
-  BudShape Simulator::measure_vesicle_bud() const
-  {
-    // The patch's height has no meaning on a vesicle; the domain protrusion and the neck,
-    // measured along the vesicle's domain axis, feed the outcome classification.
-    const VesicleDomain domain = measure_vesicle_domain(surface, phi);
-    BudShape            shape;
-    shape.domain_area       = domain.domain_area;
-    shape.domain_protrusion = domain.protrusion;
-    shape.neck_radius       = domain.neck_radius;
-    shape.bud_radius        = domain.bud_radius;
-    shape.neck_ratio        = domain.neck_ratio;
-    return shape;
   }
 
   void Simulator::report_progress(const bool force)
@@ -295,10 +251,11 @@ namespace Membrane
                           "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error", "cells",
                           "adaptations", "adaptation_energy_jump"})
       summary.add(c, stats.last(c));
-    if (closed())
-      for (const char *c : {"volume", "volume_drift", "reduced_volume", "pressure", "pressure_work", "laplace_pressure",
-                            "integral_K", "gauss_map_area"})
+    if (topology->encloses_volume())
+      for (const char *c : {"volume", "volume_drift", "reduced_volume", "pressure", "pressure_work", "laplace_pressure"})
         summary.add(c, stats.last(c));
+    for (const std::string &c : topology->summary_columns())
+      summary.add(c, stats.last(c));
     write_file_atomically(parameters.output_directory + "/summary.json", summary.str());
   }
 } // namespace Membrane

@@ -5,12 +5,10 @@
 #include <membrane/io/field_output.h>
 #include <membrane/io/log_file.h>
 #include <membrane/simulator.h>
-#include <membrane/surface/closed_surfaces.h>
 #include <membrane/surface/grid_control.h>
 #include <membrane/surface/initial_shapes.h>
 
 #include <deal.II/base/utilities.h>
-#include <deal.II/grid/grid_tools.h>
 
 #include <algorithm>
 #include <cmath>
@@ -26,10 +24,11 @@ namespace Membrane
     , communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
     , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , topology(MembraneTopology::create(parameters.reference, parameters.cells_per_side))
     , triangulation(communicator)
-    , surface(triangulation, !parameters.reference.closed())
-    , cahn_hilliard(triangulation, !parameters.reference.closed())
-    , shape_solver(triangulation, !parameters.reference.closed(), parameters.shape_options.curvature_mass)
+    , surface(triangulation, topology->periodic())
+    , cahn_hilliard(triangulation, topology->periodic())
+    , shape_solver(triangulation, topology->periodic(), parameters.shape_options.curvature_mass)
     , step_control({parameters.adaptive, parameters.min_time_step, parameters.max_time_step, parameters.growth_factor,
                     parameters.accuracy_tolerance},
                    parameters.time_step)
@@ -40,7 +39,8 @@ namespace Membrane
   void Simulator::setup()
   {
     TimerOutput::Scope scope(timer, "setup");
-    make_reference_surface();
+    topology->make_mesh(triangulation);
+    base_level = topology->base_level();
     if (!parameters.resume_from.empty())
       refine_like_checkpoint(parameters.resume_from, triangulation, parameters.cells_per_side,
                              base_level + parameters.adaptivity.max_level);
@@ -58,20 +58,6 @@ namespace Membrane
     output = std::make_unique<FieldOutput>(parameters.output_directory);
   }
 
-  void Simulator::make_reference_surface()
-  {
-    if (!closed())
-      {
-        make_periodic_unit_square(triangulation, parameters.cells_per_side);
-        base_level      = factor_cells_per_side(parameters.cells_per_side).second;
-        input_cell_size = 1.0 / parameters.cells_per_side;
-        return;
-      }
-    make_closed_surface(triangulation, parameters.reference);
-    base_level      = 0; // the input mesh is the coarse mesh
-    input_cell_size = std::sqrt(GridTools::volume(triangulation) / triangulation.n_global_active_cells());
-  }
-
   void Simulator::set_initial_state()
   {
     TimerOutput::Scope scope(timer, "initial state");
@@ -84,8 +70,7 @@ namespace Membrane
       set_cosine_modes(surface, parse_cosine_modes(parameters.cosine_modes, "Initial shape/Cosine modes"));
     else if (parameters.shape == "expression")
       set_displacement_expression(surface, parameters.displacement_expression, "Initial shape/Displacement expression");
-    if (closed())
-      set_analytic_displacement(surface, parameters.reference); // refined initial meshes: onto the sphere/ellipsoid
+    topology->place_initial_surface(surface);
 
     phi                = surface.scalar_space().ghosted_copy(make_initial_phase(surface, parameters.initial_phase));
     chemical_potential = surface.scalar_space().make_ghosted();
@@ -94,7 +79,7 @@ namespace Membrane
     energy             = compute_energy(surface, geometry, phi, parameters.material);
     initial_mass       = integrate(surface, phi);
     initial_area       = surface.area();
-    initial_volume     = closed() ? enclosed_volume(surface) : 0.0;
+    initial_volume     = topology->enclosed_volume(surface);
     reference_areas    = vertex_areas(surface);
     step_control.set_tau(parameters.time_step);
     cell_quality       = min_corner_sine(surface, geometry.normal);

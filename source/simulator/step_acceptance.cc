@@ -60,8 +60,7 @@ namespace Membrane
 
   double Simulator::reference_cell_size() const
   {
-    if (!closed()) // as the patch always had it, bit for bit
-      return 1.0 / (parameters.cells_per_side << finest_level());
-    return input_cell_size / (1u << finest_level());
+    return topology->finest_cell_size(finest_level());
   }
+
 } // namespace Membrane

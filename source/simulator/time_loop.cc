@@ -42,7 +42,7 @@ namespace Membrane
                "smoothed once per step whatever tau, so the result depends on the number of steps and does not "
                "converge as the tolerance shrinks; set <Shape/Grid control rate> (e.g. 10).\n";
     write_run_info();
-    pcout << (closed() ? "Vesicle (" + parameters.reference.type + "): " : std::string("Membrane patch: "))
+    pcout << topology->name() << ": "
           << triangulation.n_global_active_cells() << " cells, "
           << surface.scalar_space().dof_handler().n_dofs() << " vertex DoFs, "
           << Utilities::MPI::n_mpi_processes(communicator) << " MPI rank(s); output in "
@@ -55,7 +55,7 @@ namespace Membrane
         next_output_time = parameters.output_interval;
       }
     else
-      bud = closed() ? measure_vesicle_bud() : measure_bud(surface, phi);
+      bud = topology->measure_domain(surface, phi);
   }
 
   bool Simulator::advance()
