@@ -6,6 +6,7 @@
 #include <membrane/physics/terms/area_difference.h>
 #include <membrane/physics/volume.h>
 #include <membrane/surface/gauss_map.h>
+#include <membrane/surface/initial_shapes.h>
 
 #include <deal.II/grid/grid_tools.h>
 
@@ -38,7 +39,13 @@ namespace Membrane
         return 1.0 / (cells_per_side << level);
       }
 
-      void   place_initial_surface(Surface &) const override {}
+      void place_initial_surface(Surface &surface, const std::string &expression,
+                                 const std::string &entry) const override
+      {
+        if (!expression.empty())
+          set_displacement_expression(surface, expression, entry);
+      }
+
       double enclosed_volume(const Surface &) const override { return 0.0; }
 
       BudShape measure_domain(const Surface &surface, const Vector &phi_ghosted) const override
@@ -89,9 +96,11 @@ namespace Membrane
         return input_cell_size / (1u << level);
       }
 
-      void place_initial_surface(Surface &surface) const override
+      void place_initial_surface(Surface &surface, const std::string &expression,
+                                 const std::string &entry) const override
       {
-        set_analytic_displacement(surface, reference); // refined initial meshes: onto the sphere/ellipsoid
+        // Refined initial meshes: onto the sphere/ellipsoid, not on the bilinear cells.
+        set_analytic_displacement(surface, reference, expression, entry);
       }
 
       double enclosed_volume(const Surface &surface) const override { return Membrane::enclosed_volume(surface); }

@@ -65,14 +65,17 @@ namespace Membrane
       prm.declare_entry("Shape", "flat", Patterns::Selection("flat|bump|cosine modes|expression"),
                         "flat: the unit square; bump: z = a1 (1 + cos(pi rho/R0)) for rho = |u - (1/2,1/2)| < R0 "
                         "with a1 solved for Bump area; cosine modes: a sum of periodic modes; expression: a "
-                        "displacement 'Dx; Dy; Dz' of the reference point (x, y).");
+                        "displacement 'Dx; Dy; Dz' of the reference point (x, y). A closed surface: flat (its "
+                        "Reference surface) or expression (added to it).");
       prm.declare_entry("Bump radius", "0.5", Patterns::Double(1e-3, 0.5), "R0: radius of the bump (<= 1/2).");
       prm.declare_entry("Bump area", "1.3", Patterns::Double(1, max_double),
                         "Total surface area the bump amplitude a1 is solved for (the patch projects to area 1).");
       prm.declare_entry("Cosine modes", "0.05 1 1; 0.05 1 -1", Patterns::Anything(),
                         "'A k1 k2 [phase]; ...': z = sum A cos(2 pi (k1 u1 + k2 u2) + phase), integer k1, k2.");
       prm.declare_entry("Displacement expression", "0; 0; 0", Patterns::Anything(),
-                        "'Dx; Dy; Dz' in x, y (and pi); must be periodic on the unit square.");
+                        "'Dx; Dy; Dz' in x, y (and pi); must be periodic on the unit square. On a closed surface: "
+                        "in x, y, z (and pi) of the point of the Reference surface, added to it (e.g. to break "
+                        "the symmetry of an ellipsoid).");
       prm.leave_subsection();
 
       prm.enter_subsection("Initial phase");

@@ -112,9 +112,10 @@ namespace Membrane
       AssertThrow(!reference.file.empty(),
                   ExcMessage("Entry <Mesh/Mesh file>: Reference surface = file needs a mesh file (Gmsh .msh, VTK "
                              ".vtk or UCD .inp with quadrilateral cells)"));
-    AssertThrow(!closed || parameters.shape == "flat",
-                ExcMessage("Entry <Initial shape/Shape> = " + parameters.shape + ": the initial shapes are those of "
-                           "the periodic patch; a closed surface starts as its <Mesh/Reference surface> (use flat)"));
+    AssertThrow(!closed || parameters.shape == "flat" || parameters.shape == "expression",
+                ExcMessage("Entry <Initial shape/Shape> = " + parameters.shape + ": bump and cosine modes are shapes of "
+                           "the periodic patch; a closed surface starts as its <Mesh/Reference surface> (flat), "
+                           "perturbed by a Displacement expression in x, y, z (expression)"));
     AssertThrow(!closed || (phase.type != "bump" && phase.type != "expression"),
                 ExcMessage("Entry <Initial phase/Type> = " + phase.type + ": defined on the periodic patch; on a "
                            "closed surface use caps, random or uniform"));

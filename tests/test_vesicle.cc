@@ -167,6 +167,25 @@ TEST(Vesicle, SphereEnergyAndVolumeConvergeAtSecondOrder)
     }
 }
 
+// Initial shape/Displacement expression on a closed surface is evaluated on the analytic
+// surface and added to it: a scaling by 1.1 multiplies the discrete volume by 1.331 and a
+// rigid shift keeps it (both exact for the bilinear surface, whose vertices move
+// accordingly); an expression that does not parse is refused, naming the entry.
+TEST(Vesicle, DisplacementExpressionPerturbsTheAnalyticSurface)
+{
+  ClosedSurface s(sphere(8));
+  set_analytic_displacement(s.surface, sphere(8));
+  const double volume = enclosed_volume(s.surface);
+  set_analytic_displacement(s.surface, sphere(8), "0.1 * x; 0.1 * y; 0.1 * z", "Initial shape/Displacement expression");
+  EXPECT_NEAR(enclosed_volume(s.surface) / volume, 1.331, 1e-12);
+  set_analytic_displacement(s.surface, sphere(8), "0.2; -0.1; 0.3", "Initial shape/Displacement expression");
+  EXPECT_NEAR(enclosed_volume(s.surface) / volume, 1.0, 1e-12);
+  const std::string message = message_of([&] {
+    set_analytic_displacement(s.surface, sphere(8), "x +; 0", "Initial shape/Displacement expression");
+  });
+  EXPECT_NE(message.find("Initial shape/Displacement expression"), std::string::npos) << message;
+}
+
 // Files: a closed cube is read, oriented outward whatever its cells' direction, and
 // encloses exactly 1 (the volume formula is exact for bilinear cells); an open box, a
 // box with one face reversed and a missing file are refused, naming the entry.

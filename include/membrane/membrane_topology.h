@@ -40,8 +40,12 @@ namespace Membrane
     /// Size of the finest cells `level` refinements above the input mesh: the scale of the
     /// shape increments in step control.
     virtual double finest_cell_size(unsigned int level) const = 0;
-    /// After the Initial shape entries: a refined closed mesh is put onto its analytic surface.
-    virtual void place_initial_surface(Surface &surface) const = 0;
+    /// The initial surface. The patch: the unit square with the displacement expression
+    /// 'Dx; Dy; Dz' in x, y (periodic; the bump and cosine modes are set before); a closed
+    /// mesh: on its analytic surface, plus the expression in x, y, z of that surface. An empty
+    /// expression adds nothing; `entry` names it in errors.
+    virtual void place_initial_surface(Surface &surface, const std::string &expression,
+                                       const std::string &entry) const = 0;
     /// The enclosed volume V (0 for the patch).
     virtual double enclosed_volume(const Surface &surface) const = 0;
     /// The phase domain and its bud, for the statistics and the outcome classification.

@@ -68,9 +68,8 @@ namespace Membrane
       }
     else if (parameters.shape == "cosine modes")
       set_cosine_modes(surface, parse_cosine_modes(parameters.cosine_modes, "Initial shape/Cosine modes"));
-    else if (parameters.shape == "expression")
-      set_displacement_expression(surface, parameters.displacement_expression, "Initial shape/Displacement expression");
-    topology->place_initial_surface(surface);
+    topology->place_initial_surface(surface, parameters.shape == "expression" ? parameters.displacement_expression : "",
+                                    "Initial shape/Displacement expression");
 
     phi                = surface.scalar_space().ghosted_copy(make_initial_phase(surface, parameters.initial_phase));
     chemical_potential = surface.scalar_space().make_ghosted();

@@ -2,6 +2,7 @@
 #include <membrane/surface/initial_shapes.h>
 #include <membrane/surface/surface.h>
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
@@ -95,32 +96,56 @@ namespace Membrane
     return 0;
   }
 
-  void set_analytic_displacement(Surface &surface, const ReferenceSurfaceOptions &options)
+  void set_analytic_displacement(Surface &surface, const ReferenceSurfaceOptions &options,
+                                 const std::string &expression, const std::string &entry)
   {
-    if (options.type != "sphere" && options.type != "ellipsoid")
+    const bool analytic = options.type == "sphere" || options.type == "ellipsoid";
+    if (!analytic && expression.empty())
       return;
-    class RadialProjection : public Function<spacedim>
+    FunctionParser<spacedim> perturbation(spacedim);
+    if (!expression.empty())
+      try
+        {
+          perturbation.initialize("x,y,z", expression, {{"pi", numbers::PI}});
+        }
+      catch (...)
+        {
+          AssertThrow(false, ExcMessage("Entry <" + entry + ">: cannot parse <" + expression +
+                                        ">; expected three expressions 'Dx; Dy; Dz' in x, y, z"));
+        }
+    class Placement : public Function<spacedim>
     {
     public:
-      explicit RadialProjection(const std::array<double, 3> &axes)
+      Placement(const std::array<double, 3> &axes, const bool analytic, const FunctionParser<spacedim> *perturbation)
         : Function<spacedim>(spacedim)
         , axes(axes)
+        , analytic(analytic)
+        , perturbation(perturbation)
       {}
       double value(const Point<spacedim> &x, const unsigned int component) const override
       {
         // x / |x|_A with |x|_A^2 = sum (x_i / a_i)^2 lies on the ellipsoid (sphere: a_i = R).
-        double norm = 0;
-        for (unsigned int i = 0; i < spacedim; ++i)
-          norm += (x[i] / axes[i]) * (x[i] / axes[i]);
-        return x[component] / std::sqrt(norm) - x[component];
+        Point<spacedim> on_surface = x;
+        if (analytic)
+          {
+            double norm = 0;
+            for (unsigned int i = 0; i < spacedim; ++i)
+              norm += (x[i] / axes[i]) * (x[i] / axes[i]);
+            on_surface /= std::sqrt(norm);
+          }
+        const double added = perturbation ? perturbation->value(on_surface, component) : 0.0;
+        return on_surface[component] - x[component] + added;
       }
-      const std::array<double, 3> axes;
+      const std::array<double, 3>     axes;
+      const bool                      analytic;
+      const FunctionParser<spacedim> *perturbation;
     };
     const std::array<double, 3> axes =
       options.type == "sphere" ? std::array<double, 3>{{options.radius, options.radius, options.radius}}
                                : options.semi_axes;
-    set_displacement(surface, RadialProjection(axes));
+    set_displacement(surface, Placement(axes, analytic, expression.empty() ? nullptr : &perturbation));
   }
+
 
   void make_closed_surface(Triangulation &triangulation, const ReferenceSurfaceOptions &options)
   {

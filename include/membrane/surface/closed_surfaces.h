@@ -45,8 +45,11 @@ namespace Membrane
   /// Sphere and ellipsoid: the displacement that moves every reference vertex radially onto
   /// the analytic surface (zero on the input mesh, whose vertices lie on it; after the
   /// initial refinement it puts the new vertices there instead of on the bilinear cells).
-  /// Nothing for the other types.
-  void set_analytic_displacement(Surface &surface, const ReferenceSurfaceOptions &options);
+  /// Nothing for the other types. A non-empty `expression` 'Dx; Dy; Dz' in x, y, z (and pi)
+  /// is evaluated at that point of the surface and added (a perturbed initial vesicle; errors
+  /// name `entry`).
+  void set_analytic_displacement(Surface &surface, const ReferenceSurfaceOptions &options,
+                                 const std::string &expression = "", const std::string &entry = "");
 
   /// Number of reference vertices before the mesh is built (for the memory estimate);
   /// 0 if unknown (file).
