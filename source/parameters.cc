@@ -23,37 +23,6 @@ namespace Membrane
   {
     const double max_double = std::numeric_limits<double>::max();
 
-    void declare_material(ParameterHandler &prm)
-    {
-      prm.enter_subsection("Material");
-      {
-        prm.enter_subsection("Bending rigidity");
-        declare_modulus_parameters(prm, "kappa", "Bending rigidity (energy; > 0)", 1.0);
-        prm.leave_subsection();
-        prm.enter_subsection("Gaussian rigidity");
-        declare_modulus_parameters(prm, "kappa_G", "Gaussian (saddle-splay) rigidity (energy)", 0.0);
-        prm.leave_subsection();
-        prm.enter_subsection("Spontaneous curvature");
-        declare_modulus_parameters(prm, "H0", "Spontaneous curvature (1/length, sum of principal curvatures; "
-                                           "negative bulges along +n)", 0.0);
-        prm.leave_subsection();
-        prm.declare_entry("Line tension", "450", Patterns::Double(0, max_double),
-                          "sigma (energy/length^2): scale of the Cahn-Hilliard energy sigma (xi^2/2 |grad phi|^2 + "
-                          "f(phi)); the sharp-interface line tension (energy/length) is sigma * xi. Physical "
-                          "units: docs/units.md.");
-        prm.declare_entry("Transition length", "0.03", Patterns::Double(1e-12, max_double),
-                          "xi: width scale of the diffuse domain boundary (length; the patch side is 1). The "
-                          "mesh should resolve it: cell size h <= 1.25 xi.");
-        prm.declare_entry("Shape mobility", "5e-4", Patterns::Double(0, max_double),
-                          "L_X: mobility of the overdamped shape flow dX/dt = -L_X (E_n n + E_t).");
-        prm.declare_entry("Phase mobility", "0.05", Patterns::Double(0, max_double),
-                          "L_phi: mobility of lateral sorting dphi/dt = L_phi lap_s Y.");
-        declare_thermal_parameters(prm);
-        declare_area_difference_parameters(prm);
-      }
-      prm.leave_subsection();
-    }
-
     void declare_initial_state(ParameterHandler &prm)
     {
       prm.enter_subsection("Mesh");
@@ -76,24 +45,6 @@ namespace Membrane
                         "'Dx; Dy; Dz' in x, y (and pi); must be periodic on the unit square. On a closed surface: "
                         "in x, y, z (and pi) of the point of the Reference surface, added to it (e.g. to break "
                         "the symmetry of an ellipsoid).");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Initial phase");
-      prm.declare_entry("Type", "random", Patterns::Selection("random|bump|uniform|expression|caps"),
-                        "random: uniform in [Random min, Random max] per vertex (seeded, independent of the number "
-                        "of MPI ranks); bump: -1 + a3 (1 + cos(pi rho/R0)) on the Initial shape's bump disc; "
-                        "uniform: Uniform value; expression: phi0(x, y); caps: polar cap domains on a closed surface (Cap "
-                        "axes, Cap area fraction, Cap profile).");
-      prm.declare_entry("Random min", "-0.2", Patterns::Double(-1.5, 1.5), "b: lower bound of the random phi0.");
-      prm.declare_entry("Random max", "0.2", Patterns::Double(-1.5, 1.5), "c: upper bound of the random phi0.");
-      prm.declare_entry("Seed", "1", Patterns::Integer(0), "Seed of the random phi0.");
-      prm.declare_entry("Uniform value", "0", Patterns::Double(-1.5, 1.5), "phi0 for Type = uniform.");
-      prm.declare_entry("Expression", "0", Patterns::Anything(), "phi0(x, y) for Type = expression.");
-      prm.declare_entry("Bump height", "0.5", Patterns::Double(0, 2),
-                        "a3 for Type = bump when the mass is not prescribed.");
-      prm.declare_entry("Prescribe mass", "false", Patterns::Bool(),
-                        "Adjust phi0 so that integral phi0 ds equals Mass (bump: solve for a3; others: add a constant).");
-      prm.declare_entry("Mass", "-0.85", Patterns::Double(), "Target integral phi0 ds on the initial surface.");
       prm.leave_subsection();
     }
 
@@ -141,48 +92,6 @@ namespace Membrane
       prm.enter_subsection("Shape");
       prm.declare_entry("Evolve shape", "true", Patterns::Bool(),
                         "false: the surface is held fixed and only phi evolves (Cahn-Hilliard on a curved surface).");
-      prm.declare_entry("Pressure stabilization", "0.5", Patterns::Double(0, 1),
-                        "delta: weight of the residual of the tangential law in the area equation, which removes "
-                        "checkerboard modes of the Q1 surface pressure gamma (0: none).");
-      prm.declare_entry("Line stiffness", "0", Patterns::Double(0, 10),
-                        "Weight s of the linearly implicit line-energy force in the tangential law. The force "
-                        "Y grad phi is taken at Gamma^m; a tangential move W stretches the frozen phi profile and "
-                        "changes the gradient energy by sigma xi^2 ((grad_s W)^T grad phi, (grad_s V)^T grad phi) to "
-                        "second order, which s = 1 adds implicitly (an O(tau^2) change of the step). Without it the "
-                        "explicit force limits tau to about h^2 / (L_X sigma) at a sharp interface. 0: explicit "
-                        "(the reference scheme).");
-      prm.declare_entry("Curvature mass", "consistent", Patterns::Selection("consistent|lumped"),
-                        "Mass matrix of the mean-curvature equation of the shape step. consistent: the reference "
-                        "discretization, seven coupled fields per vertex (W, gamma, H, and the two tangential parts "
-                        "of the curvature vector). lumped: the mass lumped to the vertices, which lets the "
-                        "tangential parts be eliminated exactly: five fields per vertex, and a factorization of the "
-                        "shape system about half as expensive (docs/model.md: accuracy against the consistent mass).");
-      prm.declare_entry("Correct area", "true", Patterns::Bool(),
-                        "Local area conservation against a reference: each step's area equation targets the "
-                        "reference area of every vertex (set at the start, carried by grid control), so area errors "
-                        "do not accumulate. false: the linearized constraint keeps the current areas (errors drift).");
-      prm.declare_entry("Area relaxation time", "1e-4", Patterns::Double(0, max_double),
-                        "T_a: a step of length tau restores the fraction min(1, tau / T_a) of the vertex area defect "
-                        "a_ref - a (the constraint drift relaxes at the rate 1/T_a). Steps longer than T_a restore it "
-                        "whole; shorter ones (a step cut short to land on the end time, a retried step) only in "
-                        "proportion, so that their energy change shrinks with tau. 0: every step restores it whole.");
-      prm.declare_entry("Area projections", "1", Patterns::Integer(0, 5),
-                        "Projections of each step's result back onto the local area constraint (same operator, one "
-                        "back-substitution each); they remove the O(|grad W|^2) error of the linearized constraint "
-                        "within the step. Needs Correct area = true.");
-      prm.declare_entry("Tangential area correction", "0", Patterns::Integer(0, 10),
-                        "Largest number of tangential vertex moves per step that bring the vertex areas to their "
-                        "targets after the area projections (the damped least-squares tangential move of the "
-                        "linearized constraint, from a sparse direct solve of a surface Laplacian, factorized once "
-                        "per step and reused by the further moves; each kept only if it lowers the largest "
-                        "vertex-area error, else retried with more damping; they stop at 1e-9). It removes the "
-                        "defects that the pressure-stabilized area row cannot, inside locally refined patches and "
-                        "on curved vesicles (7.3: area_error below 1e-6, about 11 % more run time; phase-field "
-                        "vesicles: about 1e-5 instead of 1e-3 to 8e-2). 0: none. Needs Correct area = true.");
-      prm.declare_entry("Correct mass", "true", Patterns::Bool(),
-                        "Restore integral phi ds after each shape step by a constant shift of phi (reported as "
-                        "shape_mass_correction). phi rides on the vertices, and the local area error left by the "
-                        "pressure stabilization (O(tau) per step) would otherwise change the mass.");
       prm.declare_entry("Grid control weight", "0.1", Patterns::Double(0, 0.5),
                         "w: after each step every vertex moves by w times the tangential part of (mean of its edge "
                         "neighbours - itself), and phi is remapped (the paper's alpha = delta = 0.1; 0: no grid "
@@ -217,44 +126,6 @@ namespace Membrane
                         "A checkpoint file to continue from (same mesh; the statistics continue too). Empty: start at t = 0.");
       prm.leave_subsection();
 
-      prm.enter_subsection("Cahn-Hilliard");
-      prm.declare_entry("Scheme", "stabilized", Patterns::Selection("stabilized|linearized|explicit"),
-                        "Treatment of f'(phi) in the linear step: stabilized: f'(phi^m) + s (phi - phi^m), energy "
-                        "stable for s >= 9/8 (default); linearized: f'(phi^m) + f''(phi^m)(phi - phi^m); explicit: "
-                        "f'(phi^m) as in the paper (tau limited by the double well).");
-      prm.declare_entry("Stabilization", "1.5", Patterns::Double(0, max_double),
-                        "s of the stabilized scheme (dimensionless, multiplies sigma). s >= max|f''|/2 = 9/8 on "
-                        "[-1, 1] guarantees energy decay; 1.5 covers |phi| <= 1.1.");
-      prm.leave_subsection();
-
-      prm.enter_subsection("Linear solver");
-      prm.declare_entry("Type", "direct", Patterns::Selection("direct|gmres|block"),
-                        "direct: MUMPS (robust; default); gmres: GMRES with block-Jacobi ILU; block: the shape "
-                        "system by FGMRES with a block preconditioner (algebraic multigrid on the pressure Schur "
-                        "complement and on the normal-motion/curvature pair; iterations independent of the mesh, "
-                        "cost per step proportional to the unknowns; consistent curvature mass only), the "
-                        "Cahn-Hilliard system by LU (benchmarks/README.md).");
-      prm.declare_entry("Relative tolerance", "1e-10", Patterns::Double(1e-16, 1), "For Type = gmres and block.");
-      prm.declare_entry("Maximum iterations", "2000", Patterns::Integer(1), "For Type = gmres and block.");
-      prm.declare_entry("Reuse iterations", "0", Patterns::Integer(0, 100),
-                        "For Type = direct: the LU factors of an earlier step precondition GMRES for the current "
-                        "matrix; the matrix is factorized anew only when GMRES would need more than this many "
-                        "iterations (0: factorize every step). The result is the same to Reuse tolerance.");
-      prm.declare_entry("Reuse tolerance", "1e-12", Patterns::Double(1e-16, 1e-6),
-                        "Relative residual that the GMRES iterations with reused factors must reach.");
-      prm.declare_entry("Low-rank tolerance", "0", Patterns::Double(0, 1e-4),
-                        "For Type = direct: MUMPS compresses the blocks of its fronts to low rank up to this "
-                        "relative accuracy (block low-rank factorization, ICNTL(35) = 2, CNTL(7)), and two steps "
-                        "of iterative refinement follow every solve; 0: exact LU. At 1e-8 the solution is the "
-                        "exact one to round-off and a factorization costs less from about 128 x 128 cells on "
-                        "(benchmarks/README.md).");
-      prm.declare_entry("Out of core", "false", Patterns::Bool(),
-                        "For Type = direct: MUMPS keeps the LU factors on disk, in a directory of each process "
-                        "under $MUMPS_OOC_TMPDIR (default /tmp), instead of in memory (ICNTL(22) = 1): for meshes "
-                        "whose factors do not fit. Files a killed run leaves there are removed by the next "
-                        "out-of-core run on the host.");
-      prm.leave_subsection();
-
       prm.enter_subsection("Output");
       prm.declare_entry("Directory", "results", Patterns::DirectoryName(),
                         "Where the run writes its fields, statistics, parameters and summary.");
@@ -271,8 +142,12 @@ namespace Membrane
     prm.enter_subsection("Mesh");
     declare_adaptivity_parameters(prm);
     prm.leave_subsection();
-    declare_material(prm);
+    declare_initial_phase_parameters(prm);
+    declare_material_parameters(prm);
     declare_numerics(prm);
+    declare_shape_parameters(prm);
+    declare_cahn_hilliard_parameters(prm);
+    declare_linear_solver_parameters(prm);
     declare_vesicle_parameters(prm);
   }
 
@@ -294,37 +169,12 @@ namespace Membrane
                   ExcMessage("Entry <Initial shape/Cosine modes>: Shape = cosine modes needs at least one mode"));
     prm.leave_subsection();
 
-    prm.enter_subsection("Initial phase");
-    initial_phase.type           = prm.get("Type");
-    initial_phase.random_min     = prm.get_double("Random min");
-    initial_phase.random_max     = prm.get_double("Random max");
-    initial_phase.seed           = prm.get_integer("Seed");
-    initial_phase.uniform_value  = prm.get_double("Uniform value");
-    initial_phase.expression     = prm.get("Expression");
-    initial_phase.bump_radius    = bump_radius;
-    initial_phase.bump_height    = prm.get_double("Bump height");
-    initial_phase.prescribe_mass = prm.get_bool("Prescribe mass");
-    initial_phase.mass           = prm.get_double("Mass");
-    AssertThrow(initial_phase.random_min <= initial_phase.random_max,
-                ExcMessage("Entries <Initial phase/Random min> and <Random max>: need min <= max (got " +
-                           prm.get("Random min") + " > " + prm.get("Random max") + ")"));
-    prm.leave_subsection();
+    initial_phase             = parse_initial_phase_parameters(prm);
+    initial_phase.bump_radius = bump_radius; // the bump of Type = bump is the Initial shape's
 
+    material = parse_material_parameters(prm);
     prm.enter_subsection("Material");
-    for (auto [name, law] : {std::pair{"Bending rigidity", &material.bending_rigidity},
-                             std::pair{"Gaussian rigidity", &material.gaussian_rigidity},
-                             std::pair{"Spontaneous curvature", &material.spontaneous_curvature}})
-      {
-        prm.enter_subsection(name);
-        *law = parse_modulus_law(prm, std::string("Material/") + name);
-        prm.leave_subsection();
-      }
-    material.line_tension      = prm.get_double("Line tension");
-    material.transition_length = prm.get_double("Transition length");
-    material.shape_mobility    = prm.get_double("Shape mobility");
-    material.phase_mobility    = prm.get_double("Phase mobility");
-    thermal                    = parse_thermal_parameters(prm);
-    material.area_difference   = parse_area_difference_parameters(prm);
+    thermal = parse_thermal_parameters(prm);
     prm.leave_subsection();
 
     prm.enter_subsection("Time stepping");
@@ -347,18 +197,11 @@ namespace Membrane
                            prm.get("Maximum time step") + ")"));
     prm.leave_subsection();
 
+    shape_options = parse_shape_parameters(prm);
     prm.enter_subsection("Shape");
-    evolve_shape                         = prm.get_bool("Evolve shape");
-    shape_options.pressure_stabilization = prm.get_double("Pressure stabilization");
-    shape_options.line_stiffness         = prm.get_double("Line stiffness");
-    shape_options.curvature_mass = prm.get("Curvature mass") == "lumped" ? CurvatureMass::lumped : CurvatureMass::consistent;
-    shape_options.correct_area           = prm.get_bool("Correct area");
-    shape_options.area_corrections       = prm.get_integer("Area projections");
-    shape_options.area_relaxation_time   = prm.get_double("Area relaxation time");
-    shape_options.tangential_area_iterations = prm.get_integer("Tangential area correction");
-    shape_options.correct_mass           = prm.get_bool("Correct mass");
-    grid_control_weight                  = prm.get_double("Grid control weight");
-    grid_control_rate                    = prm.get_double("Grid control rate");
+    evolve_shape        = prm.get_bool("Evolve shape");
+    grid_control_weight = prm.get_double("Grid control weight");
+    grid_control_rate   = prm.get_double("Grid control rate");
     prm.leave_subsection();
 
     prm.enter_subsection("Outcome");
@@ -372,20 +215,8 @@ namespace Membrane
     resume_from         = prm.get("Resume from");
     prm.leave_subsection();
 
-    prm.enter_subsection("Cahn-Hilliard");
-    cahn_hilliard.scheme        = prm.get("Scheme");
-    cahn_hilliard.stabilization = prm.get_double("Stabilization");
-    prm.leave_subsection();
-
-    prm.enter_subsection("Linear solver");
-    linear_solver.type               = prm.get("Type");
-    linear_solver.relative_tolerance = prm.get_double("Relative tolerance");
-    linear_solver.reuse_iterations   = prm.get_integer("Reuse iterations");
-    linear_solver.reuse_tolerance    = prm.get_double("Reuse tolerance");
-    linear_solver.max_iterations     = prm.get_integer("Maximum iterations");
-    linear_solver.low_rank_tolerance = prm.get_double("Low-rank tolerance");
-    linear_solver.out_of_core        = prm.get_bool("Out of core");
-    prm.leave_subsection();
+    cahn_hilliard = parse_cahn_hilliard_parameters(prm);
+    linear_solver = parse_linear_solver_parameters(prm);
 
     prm.enter_subsection("Output");
     output_directory = prm.get("Directory");

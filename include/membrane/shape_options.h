@@ -2,6 +2,11 @@
 // The options of the shape step (shape_solver.h): what the parameters configure, without the
 // solver itself, so that the parameters and the block preconditioner need not include it.
 
+namespace dealii
+{
+  class ParameterHandler;
+}
+
 namespace Membrane
 {
   /// Mass of the curvature rows (shape_solver.h); fixed when the ShapeSolver is built.
@@ -26,4 +31,8 @@ namespace Membrane
     bool   correct_mass           = true;  ///< restore integral phi ds after the shape step
   };
 
+  /// The entries of the section Shape that ShapeOptions holds: declared with defaults and
+  /// documentation, and read.
+  void         declare_shape_parameters(dealii::ParameterHandler &prm);
+  ShapeOptions parse_shape_parameters(dealii::ParameterHandler &prm);
 } // namespace Membrane

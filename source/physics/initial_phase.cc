@@ -5,6 +5,7 @@
 
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/numbers.h>
+#include <deal.II/base/parameter_handler.h>
 
 #include <cmath>
 #include <cstring>
@@ -94,5 +95,46 @@ namespace Membrane
         phi.add(shift);
       }
     return phi;
+  }
+
+  void declare_initial_phase_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Initial phase");
+    prm.declare_entry("Type", "random", Patterns::Selection("random|bump|uniform|expression|caps"),
+                      "random: uniform in [Random min, Random max] per vertex (seeded, independent of the number "
+                      "of MPI ranks); bump: -1 + a3 (1 + cos(pi rho/R0)) on the Initial shape's bump disc; "
+                      "uniform: Uniform value; expression: phi0(x, y); caps: polar cap domains on a closed surface (Cap "
+                      "axes, Cap area fraction, Cap profile).");
+    prm.declare_entry("Random min", "-0.2", Patterns::Double(-1.5, 1.5), "b: lower bound of the random phi0.");
+    prm.declare_entry("Random max", "0.2", Patterns::Double(-1.5, 1.5), "c: upper bound of the random phi0.");
+    prm.declare_entry("Seed", "1", Patterns::Integer(0), "Seed of the random phi0.");
+    prm.declare_entry("Uniform value", "0", Patterns::Double(-1.5, 1.5), "phi0 for Type = uniform.");
+    prm.declare_entry("Expression", "0", Patterns::Anything(), "phi0(x, y) for Type = expression.");
+    prm.declare_entry("Bump height", "0.5", Patterns::Double(0, 2),
+                      "a3 for Type = bump when the mass is not prescribed.");
+    prm.declare_entry("Prescribe mass", "false", Patterns::Bool(),
+                      "Adjust phi0 so that integral phi0 ds equals Mass (bump: solve for a3; others: add a constant).");
+    prm.declare_entry("Mass", "-0.85", Patterns::Double(), "Target integral phi0 ds on the initial surface.");
+    prm.leave_subsection();
+  }
+
+  InitialPhaseOptions parse_initial_phase_parameters(ParameterHandler &prm)
+  {
+    InitialPhaseOptions options;
+    prm.enter_subsection("Initial phase");
+    options.type           = prm.get("Type");
+    options.random_min     = prm.get_double("Random min");
+    options.random_max     = prm.get_double("Random max");
+    options.seed           = prm.get_integer("Seed");
+    options.uniform_value  = prm.get_double("Uniform value");
+    options.expression     = prm.get("Expression");
+    options.bump_height    = prm.get_double("Bump height");
+    options.prescribe_mass = prm.get_bool("Prescribe mass");
+    options.mass           = prm.get_double("Mass");
+    AssertThrow(options.random_min <= options.random_max,
+                ExcMessage("Entries <Initial phase/Random min> and <Random max>: need min <= max (got " +
+                           prm.get("Random min") + " > " + prm.get("Random max") + ")"));
+    prm.leave_subsection();
+    return options;
   }
 } // namespace Membrane

@@ -22,6 +22,11 @@
 #include <string>
 #include <vector>
 
+namespace dealii
+{
+  class ParameterHandler;
+}
+
 namespace Membrane
 {
   struct InitialPhaseOptions
@@ -53,4 +58,9 @@ namespace Membrane
 
   /// phi0 as an owned scalar-space vector (constraints applied).
   Vector make_initial_phase(const Surface &surface, const InitialPhaseOptions &options);
+
+  /// The section Initial phase of the input (without the caps' entries, vesicle_parameters.cc):
+  /// declared with defaults and documentation, and read; the bump radius is the Initial shape's.
+  void                declare_initial_phase_parameters(dealii::ParameterHandler &prm);
+  InitialPhaseOptions parse_initial_phase_parameters(dealii::ParameterHandler &prm);
 } // namespace Membrane

@@ -7,6 +7,11 @@
 
 #include <memory>
 
+namespace dealii
+{
+  class ParameterHandler;
+}
+
 namespace Membrane
 {
   /// Area-difference elasticity of a closed bilayer (physics/terms/area_difference.h).
@@ -28,4 +33,10 @@ namespace Membrane
     double phase_mobility    = 0; ///< L_phi
     AreaDifferenceOptions area_difference;
   };
+
+  /// The section Material of the input, with its subsections (moduli, Temperature and seed of
+  /// the thermal noise, Area difference): declared with defaults and documentation. The parse
+  /// reads all but the thermal noise (parse_thermal_parameters).
+  void     declare_material_parameters(dealii::ParameterHandler &prm);
+  Material parse_material_parameters(dealii::ParameterHandler &prm);
 } // namespace Membrane

@@ -3,6 +3,11 @@
 
 #include <string>
 
+namespace dealii
+{
+  class ParameterHandler;
+}
+
 namespace Membrane
 {
   struct LinearSolverOptions
@@ -22,4 +27,8 @@ namespace Membrane
     /// (default /tmp) instead of holding them in memory.
     bool out_of_core = false;
   };
+
+  /// The section Linear solver of the input: declared with defaults and documentation, and read.
+  void                declare_linear_solver_parameters(dealii::ParameterHandler &prm);
+  LinearSolverOptions parse_linear_solver_parameters(dealii::ParameterHandler &prm);
 } // namespace Membrane
