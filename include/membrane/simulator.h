@@ -124,6 +124,9 @@ namespace Membrane
     // Set-up (setup.cc): the input mesh (from the topology), the spaces and solvers, the
     // initial state or the state of a checkpoint.
     void setup();
+    /// The finite element spaces, the solvers and their matrices on the current mesh (at the
+    /// start and after every change of the mesh).
+    void setup_spaces_and_solvers();
     void set_initial_state();
     void resume();
 

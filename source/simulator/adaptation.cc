@@ -129,11 +129,7 @@ namespace Membrane
     scalar_transfer.prepare_for_coarsening_and_refinement(scalars_in);
     triangulation.execute_coarsening_and_refinement();
 
-    surface.setup();
-    cahn_hilliard.setup();
-    if (parameters.evolve_shape)
-      shape_solver.setup();
-    tangential_corrector.reset();
+    setup_spaces_and_solvers();
     const FieldSpace &scalars = surface.scalar_space();
     Vector                moved = surface.vector_space().make_owned(), normal_new = moved;
     std::vector<Vector *> vectors_out = {&moved, &normal_new};
@@ -191,11 +187,7 @@ namespace Membrane
         for (const auto &cell : triangulation.active_cell_iterators())
           cell->clear_coarsen_flag(); // the initial mesh only grows
         triangulation.execute_coarsening_and_refinement();
-        surface.setup();
-        cahn_hilliard.setup();
-        if (parameters.evolve_shape)
-          shape_solver.setup();
-        tangential_corrector.reset();
+        setup_spaces_and_solvers();
         set_initial_state(); // from the formulas on the finer mesh, not interpolated
       }
     pcout << "Initial mesh: " << triangulation.n_global_active_cells() << " cells, finest level "

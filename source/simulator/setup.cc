@@ -44,11 +44,7 @@ namespace Membrane
     if (!parameters.resume_from.empty())
       refine_like_checkpoint(parameters.resume_from, triangulation, parameters.cells_per_side,
                              base_level + parameters.adaptivity.max_level);
-    surface.setup();
-    cahn_hilliard.setup();
-    if (parameters.evolve_shape)
-      shape_solver.setup();
-    tangential_corrector.reset();
+    setup_spaces_and_solvers();
     if (Utilities::MPI::this_mpi_process(communicator) == 0)
       {
         std::filesystem::create_directories(parameters.output_directory);
@@ -56,6 +52,15 @@ namespace Membrane
       }
     MPI_Barrier(communicator);
     output = std::make_unique<FieldOutput>(parameters.output_directory);
+  }
+
+  void Simulator::setup_spaces_and_solvers()
+  {
+    surface.setup();
+    cahn_hilliard.setup();
+    if (parameters.evolve_shape)
+      shape_solver.setup();
+    tangential_corrector.reset();
   }
 
   void Simulator::set_initial_state()
