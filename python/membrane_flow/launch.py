@@ -153,3 +153,15 @@ def output(command, cwd=None, env=None, timeout=None):
         process.communicate()
         raise
     return subprocess.CompletedProcess(command, process.returncode, out, err)
+
+
+def interruptible(main, name, what):
+    """Runs main(argv) and turns a Ctrl-C that arrives before any `what` started (the runs catch
+    their own) into a message and the exit code 130."""
+    def run(argv=None):
+        try:
+            return main(argv)
+        except KeyboardInterrupt:
+            print(f'{name}: interrupted before any {what} started', file=sys.stderr)
+            return 130
+    return run

@@ -26,6 +26,7 @@ import os
 import re
 import sys
 
+from . import results_and_docs
 from .. import run as reader
 from ..run import load_statistics
 from ..workflow.continuation import crossing, follow_branch, turning_point
@@ -510,12 +511,10 @@ def small_domain_page(studies, docs):
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] in (['-h'], ['--help']):
-        print('usage: python3 -m membrane_flow branch-docs [results/studies] [docs]\n\n' + __doc__)
+    arguments = results_and_docs(sys.argv[1:] if argv is None else list(argv), 'branch-docs', __doc__)
+    if arguments is None:
         return 0
-    studies = argv[0] if len(argv) > 0 else 'results/studies'
-    docs = argv[1] if len(argv) > 1 else 'docs'
+    studies, docs = arguments
     images = os.path.join(docs, 'images', 'studies')
     small = small_domain_page(studies, docs)
     results = []

@@ -9,6 +9,7 @@ import os
 import sys
 
 from membrane_flow import run as reader
+from membrane_flow.docgen import results_and_docs
 from membrane_flow.docgen.branches import load_mesh
 from membrane_flow.pictures import study as plot_study
 from membrane_flow.workflow.budding_time import budding_time_of_run
@@ -17,12 +18,10 @@ from membrane_flow.workflow.threshold_time import section as threshold_section
 
 
 def main(argv=None):
-    argv = sys.argv[1:] if argv is None else list(argv)
-    if argv[:1] in (['-h'], ['--help']):
-        print('usage: python3 -m membrane_flow study-docs [results/studies] [docs]\n\n' + __doc__)
+    arguments = results_and_docs(sys.argv[1:] if argv is None else list(argv), 'study-docs', __doc__)
+    if arguments is None:
         return 0
-    studies = argv[0] if len(argv) > 0 else 'results/studies'
-    docs = argv[1] if len(argv) > 1 else 'docs'
+    studies, docs = arguments
     images = os.path.join(docs, 'images', 'studies')
     os.makedirs(images, exist_ok=True)
 

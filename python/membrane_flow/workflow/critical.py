@@ -25,6 +25,7 @@ import os
 import signal
 import sys
 
+from .. import launch
 from .sweep import Sweep, SweepError, normalize_name, write_atomically
 
 
@@ -240,12 +241,7 @@ def _main(argv):
     return code
 
 
-def main(argv=None):
-    try:
-        return _main(argv)
-    except KeyboardInterrupt:  # Ctrl-C before any run started
-        print(f'{NAME}: interrupted before any run started', file=sys.stderr)
-        return 130
+main = launch.interruptible(_main, NAME, 'run')
 
 
 if __name__ == '__main__':

@@ -609,12 +609,7 @@ def _main(argv):
     return 2 if failed else 0
 
 
-def main(argv=None):
-    try:
-        return _main(argv)
-    except KeyboardInterrupt:  # Ctrl-C before any case started
-        print(f'{NAME}: interrupted before any case started', file=sys.stderr)
-        return 130
+main = launch.interruptible(_main, NAME, 'case')
 
 
 if __name__ == '__main__':
