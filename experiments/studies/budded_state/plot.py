@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 
 B = 'results/studies/budded-state/'
 RUNS = [('L1-r1e-4', 'level 1 (1.5 per xi)', 'C0', 0), ('L2-r1e-3', 'level 2 (3 per xi)', 'C1', 0),
-        ('L3-r1e-3', 'level 3 (6 per xi)', 'C2', 0),
+        ('L3-r3e-4', 'level 3 (6 per xi)', 'C2', 0),
         ('L3-from-L2-r3e-4', 'level 3, from the level-2 state at t = 27.79', 'C3', 27.79)]
 
 
