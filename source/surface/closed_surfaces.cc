@@ -125,14 +125,15 @@ namespace Membrane
       double value(const Point<spacedim> &x, const unsigned int component) const override
       {
         // x / |x|_A with |x|_A^2 = sum (x_i / a_i)^2 lies on the ellipsoid (sphere: a_i = R).
+        // Each coordinate divided by |x|_A, as before the perturbation existed (Point's /=
+        // multiplies by the inverse, which rounds differently).
+        double norm = 0;
+        for (unsigned int i = 0; i < spacedim; ++i)
+          norm += (x[i] / axes[i]) * (x[i] / axes[i]);
         Point<spacedim> on_surface = x;
         if (analytic)
-          {
-            double norm = 0;
-            for (unsigned int i = 0; i < spacedim; ++i)
-              norm += (x[i] / axes[i]) * (x[i] / axes[i]);
-            on_surface /= std::sqrt(norm);
-          }
+          for (unsigned int i = 0; i < spacedim; ++i)
+            on_surface[i] = x[i] / std::sqrt(norm);
         const double added = perturbation ? perturbation->value(on_surface, component) : 0.0;
         return on_surface[component] - x[component] + added;
       }
