@@ -11,6 +11,7 @@
 #include <deal.II/grid/grid_tools.h>
 
 #include <cmath>
+#include <sstream>
 
 namespace Membrane
 {
@@ -39,11 +40,20 @@ namespace Membrane
         return 1.0 / (cells_per_side << level);
       }
 
-      void place_initial_surface(Surface &surface, const std::string &expression,
-                                 const std::string &entry) const override
+      std::string place_initial_surface(Surface &surface, const InitialShape &shape) const override
       {
-        if (!expression.empty())
-          set_displacement_expression(surface, expression, entry);
+        if (shape.shape == "bump")
+          {
+            const double a1 = set_bump(surface, shape.bump_radius, shape.bump_area);
+            std::ostringstream line;
+            line << "Bump amplitude a1 = " << a1 << " for area " << shape.bump_area;
+            return line.str();
+          }
+        if (shape.shape == "cosine modes")
+          set_cosine_modes(surface, parse_cosine_modes(shape.cosine_modes, "Initial shape/Cosine modes"));
+        else if (shape.shape == "expression")
+          set_displacement_expression(surface, shape.displacement_expression, "Initial shape/Displacement expression");
+        return "";
       }
 
       double enclosed_volume(const Surface &) const override { return 0.0; }
@@ -96,11 +106,13 @@ namespace Membrane
         return input_cell_size / (1u << level);
       }
 
-      void place_initial_surface(Surface &surface, const std::string &expression,
-                                 const std::string &entry) const override
+      std::string place_initial_surface(Surface &surface, const InitialShape &shape) const override
       {
         // Refined initial meshes: onto the sphere/ellipsoid, not on the bilinear cells.
-        set_analytic_displacement(surface, reference, expression, entry);
+        set_analytic_displacement(surface, reference,
+                                  shape.shape == "expression" ? shape.displacement_expression : "",
+                                  "Initial shape/Displacement expression");
+        return "";
       }
 
       double enclosed_volume(const Surface &surface) const override { return Membrane::enclosed_volume(surface); }

@@ -40,12 +40,18 @@ namespace Membrane
     /// Size of the finest cells `level` refinements above the input mesh: the scale of the
     /// shape increments in step control.
     virtual double finest_cell_size(unsigned int level) const = 0;
-    /// The initial surface. The patch: the unit square with the displacement expression
-    /// 'Dx; Dy; Dz' in x, y (periodic; the bump and cosine modes are set before); a closed
-    /// mesh: on its analytic surface, plus the expression in x, y, z of that surface. An empty
-    /// expression adds nothing; `entry` names it in errors.
-    virtual void place_initial_surface(Surface &surface, const std::string &expression,
-                                       const std::string &entry) const = 0;
+    /// The entries of Initial shape.
+    struct InitialShape
+    {
+      std::string shape; ///< flat, bump, cosine modes or expression
+      double      bump_radius = 0.5, bump_area = 1.3;
+      std::string cosine_modes, displacement_expression;
+    };
+    /// The initial surface. The patch: the unit square, flat, with the bump, the cosine modes
+    /// or the displacement expression 'Dx; Dy; Dz' in x, y (periodic). A closed mesh: on its
+    /// analytic surface, plus the expression in x, y, z of that surface (the input checks refuse
+    /// the patch's other shapes). Returns a line for the log ("" if none).
+    virtual std::string place_initial_surface(Surface &surface, const InitialShape &shape) const = 0;
     /// The enclosed volume V (0 for the patch).
     virtual double enclosed_volume(const Surface &surface) const = 0;
     /// The phase domain and its bud, for the statistics and the outcome classification.

@@ -6,7 +6,6 @@
 #include <membrane/io/log_file.h>
 #include <membrane/simulator.h>
 #include <membrane/surface/grid_control.h>
-#include <membrane/surface/initial_shapes.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -66,15 +65,11 @@ namespace Membrane
   void Simulator::set_initial_state()
   {
     TimerOutput::Scope scope(timer, "initial state");
-    if (parameters.shape == "bump")
-      {
-        const double a1 = set_bump(surface, parameters.bump_radius, parameters.bump_area);
-        pcout << "Bump amplitude a1 = " << a1 << " for area " << parameters.bump_area << '\n';
-      }
-    else if (parameters.shape == "cosine modes")
-      set_cosine_modes(surface, parse_cosine_modes(parameters.cosine_modes, "Initial shape/Cosine modes"));
-    topology->place_initial_surface(surface, parameters.shape == "expression" ? parameters.displacement_expression : "",
-                                    "Initial shape/Displacement expression");
+    const std::string placed = topology->place_initial_surface(
+      surface, {parameters.shape, parameters.bump_radius, parameters.bump_area, parameters.cosine_modes,
+                parameters.displacement_expression});
+    if (!placed.empty())
+      pcout << placed << '\n';
 
     phi                = surface.scalar_space().ghosted_copy(make_initial_phase(surface, parameters.initial_phase));
     chemical_potential = surface.scalar_space().make_ghosted();
