@@ -566,6 +566,14 @@ def combination_mass_beyond_cosine_modes_area_bound():
                        r'Initial phase/Mass.*A <= 1\.18.*upper bound.*got Mass = 5')
 
 
+@check
+def combination_patch_shape_on_a_closed_surface():
+    # A closed surface takes flat or an expression; the bump is the patch's.
+    expect_combination(['Mesh/Reference surface=sphere', 'Mesh/Cells per side=4', 'Initial phase/Type=uniform',
+                        'Initial shape/Shape=bump'],
+                       r'Initial shape/Shape.*bump.*periodic patch.*flat.*expression')
+
+
 def accepted(path):
     """The shipped input runs (one step): the checks above refuse nothing that is in use."""
     def check_input():
