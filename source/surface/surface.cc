@@ -1,6 +1,8 @@
 #include <membrane/surface/projection.h>
 #include <membrane/surface/surface.h>
 
+#include <set>
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
@@ -98,6 +100,24 @@ namespace Membrane
         points[v] = position[cell->vertex_index(v)];
       return points;
     });
+  }
+
+  int Surface::euler_characteristic() const
+  {
+    if (is_periodic)
+      return 0;
+    // The coarse mesh is known to every rank (p4est replicates level 0).
+    std::set<unsigned int> vertices, lines;
+    int                    faces = 0;
+    for (const auto &cell : triangulation.cell_iterators_on_level(0))
+      {
+        ++faces;
+        for (const unsigned int v : cell->vertex_indices())
+          vertices.insert(cell->vertex_index(v));
+        for (const unsigned int l : cell->line_indices())
+          lines.insert(cell->line_index(l));
+      }
+    return static_cast<int>(vertices.size()) - static_cast<int>(lines.size()) + faces;
   }
 
   double Surface::area() const

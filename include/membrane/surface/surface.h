@@ -82,6 +82,10 @@ namespace Membrane
     double area() const;
     /// Largest cell diameter on the current surface (global).
     double max_cell_diameter() const;
+    /// Euler characteristic of the surface: 0 for the periodic patch (a torus), V - E + F
+    /// of the coarse mesh for a closed surface (2 for a sphere). Gauss-Bonnet:
+    /// integral K ds = 2 pi chi.
+    int euler_characteristic() const;
 
   private:
     const Triangulation &triangulation;
