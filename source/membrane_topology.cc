@@ -76,6 +76,12 @@ namespace Membrane
         stats.set("phase_mode_2", phase.shell_2);
       }
 
+      StructureFactor phase_structure_factor(const Surface &surface, const Vector &phi_ghosted,
+                                             const unsigned int n) const override
+      {
+        return patch_structure_factor(surface.scalar_space(), phi_ghosted, n);
+      }
+
       std::vector<std::string> summary_columns() const override { return {}; }
 
     private:
@@ -145,6 +151,12 @@ namespace Membrane
         const std::vector<double> shape_power = spherical_mode_powers(surface, 4);
         for (unsigned int l = 2; l <= 4; ++l)
           stats.set("shape_mode_" + std::to_string(l), shape_power[l] / (2 * l + 1));
+      }
+
+      StructureFactor phase_structure_factor(const Surface &surface, const Vector &phi_ghosted,
+                                             const unsigned int n) const override
+      {
+        return sphere_structure_factor(surface, phi_ghosted, n);
       }
 
       std::vector<std::string> summary_columns() const override { return {"integral_K", "gauss_map_area"}; }

@@ -132,6 +132,11 @@ namespace Membrane
       prm.declare_entry("Interval", "0", Patterns::Double(0, max_double),
                         "Time between VTU snapshots (0: every step). The first and last states are always written.");
       prm.declare_entry("Write VTU", "true", Patterns::Bool(), "Write the PVD/VTU time series of the surface.");
+      prm.declare_entry("Structure factor shells", "0", Patterns::Integer(0, 64),
+                        "n > 0: statistics columns phase_shell_1 .. phase_shell_n, the structure factor of phi (the "
+                        "mean of |phi_k|^2 over the Fourier shell |k| = n on the patch, over m of phi_lm^2 at degree l "
+                        "= n on a closed surface), and phase_wavenumber, its mean wave number (2 pi |k| on the patch, "
+                        "l on a closed surface; docs/fluctuations.md). 0: none.");
       prm.leave_subsection();
     }
   } // namespace
@@ -222,6 +227,7 @@ namespace Membrane
     output_directory = prm.get("Directory");
     output_interval  = prm.get_double("Interval");
     write_vtu        = prm.get_bool("Write VTU");
+    structure_factor_shells = prm.get_integer("Structure factor shells");
     prm.leave_subsection();
 
     parse_vesicle_parameters(prm, *this);

@@ -5,6 +5,7 @@
 // The Simulator asks this object instead of branching on the kind of surface.
 
 #include <membrane/analysis/bud_shape.h>
+#include <membrane/analysis/structure_factor.h>
 #include <membrane/io/statistics.h>
 #include <membrane/physics/energy.h>
 #include <membrane/surface/closed_surfaces.h>
@@ -60,6 +61,10 @@ namespace Membrane
     /// area difference, integral K, Gauss-map area and spherical-harmonic spectrum.
     virtual void record_shape_statistics(const Surface &surface, const Geometry &geometry, const Vector &phi_ghosted,
                                          const EnergyTerms &energy, Statistics &stats) const = 0;
+    /// The structure factor of phi over shells 1 .. n (analysis/structure_factor.h): Fourier
+    /// shells |k| on the patch, degrees l on a closed surface.
+    virtual StructureFactor phase_structure_factor(const Surface &surface, const Vector &phi_ghosted,
+                                                   unsigned int n) const = 0;
     /// The shape columns summary.json repeats.
     virtual std::vector<std::string> summary_columns() const = 0;
 

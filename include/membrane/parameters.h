@@ -82,6 +82,7 @@ namespace Membrane
     std::string output_directory = "results";
     double      output_interval  = 0;
     bool        write_vtu        = true;
+    unsigned int structure_factor_shells = 0; ///< phase_shell_n columns (analysis/structure_factor.h)
 
     static void declare(dealii::ParameterHandler &prm);
     /// Reads every entry and checks the combinations; throws with a message

@@ -78,6 +78,65 @@ namespace Membrane
     return sum;
   }
 
+  Point<spacedim> volume_centroid(const Surface &surface)
+  {
+    // integral over Omega of x_i dV = integral over Gamma of x_i^2 / 2 n_i ds, V = integral x.n ds / 3.
+    const QGauss<dim>       quadrature(3);
+    FEValues<dim, spacedim> fe_values(surface.mapping(), surface.vector_space().fe(), quadrature,
+                                      update_quadrature_points | update_normal_vectors | update_JxW_values);
+    std::vector<double>     moments(spacedim + 1, 0.0);
+    for (const auto &cell : surface.vector_space().dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              const Point<spacedim>     &x = fe_values.quadrature_point(q);
+              const Tensor<1, spacedim> &n = fe_values.normal_vector(q);
+              for (unsigned int i = 0; i < spacedim; ++i)
+                moments[i] += x[i] * x[i] / 2 * n[i] * fe_values.JxW(q);
+              moments[spacedim] += x * n * fe_values.JxW(q) / 3;
+            }
+        }
+    Utilities::MPI::sum(moments, surface.vector_space().communicator(), moments);
+    Point<spacedim> centroid;
+    for (unsigned int i = 0; i < spacedim; ++i)
+      centroid[i] = moments[i] / moments[spacedim];
+    return centroid;
+  }
+
+  std::vector<double> field_spherical_amplitudes(const Surface &surface, const Vector &field_ghosted,
+                                                 const unsigned int l_max)
+  {
+    const Point<spacedim>   centroid = volume_centroid(surface);
+    const FieldSpace       &scalars  = surface.scalar_space();
+    const QGauss<dim>       quadrature(3);
+    FEValues<dim, spacedim> fe_values(surface.mapping(), scalars.fe(), quadrature,
+                                      update_values | update_quadrature_points | update_normal_vectors |
+                                        update_JxW_values);
+    const unsigned int      n_harmonics = (l_max + 1) * (l_max + 1);
+    std::vector<double>     sums(n_harmonics, 0.0), Y, f(quadrature.size());
+    for (const auto &cell : scalars.dof_handler().active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(field_ghosted, f);
+          for (const unsigned int q : fe_values.quadrature_point_indices())
+            {
+              // dOmega = (x - c).n / |x - c|^3 ds: the radial projection onto the unit sphere.
+              const Tensor<1, spacedim> x        = fe_values.quadrature_point(q) - centroid;
+              const double              distance = x.norm();
+              const double solid_angle = x * fe_values.normal_vector(q) / (distance * distance * distance) *
+                                         fe_values.JxW(q);
+              harmonics(l_max, x / distance, Y);
+              for (unsigned int k = 0; k < n_harmonics; ++k)
+                sums[k] += f[q] * Y[k] * solid_angle;
+            }
+        }
+    Utilities::MPI::sum(sums, scalars.communicator(), sums);
+    return sums;
+  }
+
   SphericalModes spherical_modes(const Surface &surface, const unsigned int l_max)
   {
     const FieldSpace &vectors = surface.vector_space();
@@ -96,27 +155,9 @@ namespace Membrane
     const unsigned int      n_vertices = vertex_rule.size();
     std::vector<dealii::Vector<double>> D(n_vertices, dealii::Vector<double>(spacedim));
 
-    // The centroid of the enclosed volume: integral over Omega of x_i dV = integral over
-    // Gamma of x_i^2 / 2 n_i ds, V = integral x.n ds / 3.
-    std::vector<double> moments(spacedim + 1, 0.0);
-    for (const auto &cell : vectors.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            {
-              const Point<spacedim>     &x = fe_values.quadrature_point(q);
-              const Tensor<1, spacedim> &n = fe_values.normal_vector(q);
-              for (unsigned int i = 0; i < spacedim; ++i)
-                moments[i] += x[i] * x[i] / 2 * n[i] * fe_values.JxW(q);
-              moments[spacedim] += x * n * fe_values.JxW(q) / 3;
-            }
-        }
-    Utilities::MPI::sum(moments, comm, moments);
     SphericalModes modes;
-    modes.l_max = l_max;
-    for (unsigned int i = 0; i < spacedim; ++i)
-      modes.centroid[i] = moments[i] / moments[spacedim];
+    modes.l_max    = l_max;
+    modes.centroid = volume_centroid(surface);
 
     // One pass for integral r Y_lm dOmega, integral Y_lm dOmega, integral r dOmega and the
     // total solid angle; then R0 = <r> and u_lm = integral r Y_lm dOmega / R0 - integral Y_lm dOmega.

@@ -79,6 +79,13 @@ namespace Membrane
     if (topology->encloses_volume())
       record_volume_statistics();
     topology->record_shape_statistics(surface, geometry, phi, energy, stats);
+    if (parameters.structure_factor_shells > 0)
+      {
+        const StructureFactor S = topology->phase_structure_factor(surface, phi, parameters.structure_factor_shells);
+        for (std::size_t n = 0; n < S.power.size(); ++n)
+          stats.set("phase_shell_" + std::to_string(n + 1), S.power[n]);
+        stats.set("phase_wavenumber", S.mean_wavenumber);
+      }
     stats.end_row();
   }
 

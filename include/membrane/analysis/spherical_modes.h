@@ -50,6 +50,15 @@ namespace Membrane
   /// the surface's ranks. The surface must be closed and star-shaped about its centroid.
   SphericalModes spherical_modes(const Surface &surface, unsigned int l_max);
 
+  /// The centroid of the volume a closed surface encloses; collective.
+  dealii::Point<spacedim> volume_centroid(const Surface &surface);
+
+  /// integral f Y_lm dOmega of the ghosted scalar Q1 field f, by the radial projection of the
+  /// surface from its volume centroid onto the unit sphere, at index l (l + 1) + m for l <= l_max;
+  /// collective. The surface must be closed and star-shaped about its centroid.
+  std::vector<double> field_spherical_amplitudes(const Surface &surface, const Vector &field_ghosted,
+                                                 unsigned int l_max);
+
   /// sum over m of u_lm^2 for l = 0 .. l_max (entries 0 and 1 are fixed by the choice of R0
   /// and c, see above); collective.
   std::vector<double> spherical_mode_powers(const Surface &surface, unsigned int l_max);
