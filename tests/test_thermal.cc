@@ -50,73 +50,119 @@ TEST(Thermal, GeneratorIsAPureFunctionOfItsKeyWithUnitVariance)
   EXPECT_LT(std::abs(fourth / n - 3), 4 * std::sqrt(96.0 / n));
 }
 
-TEST(Thermal, PhaseFluctuationsInOnePhaseFollowEquipartition)
+namespace
 {
-  constexpr int         n = 16;
-  Testing::FixedSurface setup(n);
-  setup.options.scheme = "linearized";
-  InitialPhaseOptions uniform;
-  uniform.type          = "uniform";
-  uniform.uniform_value = -1;
-  setup.set_phase(uniform);
-  const double mass = setup.mass();
-
-  const double kT = 1e-4, tau = 2.5e-4, sigma = 1, xi = 0.1, f2 = 9.0 / 4;
-  // Nodal positions of the scalar dofs, for the Fourier amplitudes (the patch
-  // area is 1, n^2 vertices).
-  const auto                   &space = setup.surface.scalar_space();
-  std::vector<dealii::Point<3>> where(space.dof_handler().n_dofs());
-  for (const auto &cell : space.dof_handler().active_cell_iterators())
-    for (const unsigned int v : cell->vertex_indices())
-      where[cell->vertex_dof_index(v, 0)] = cell->vertex(v);
-  // Real amplitudes cos and sin of the modes k = (1,0), (0,1) (|q| = 2 pi) and
-  // (1,1), (1,-1).
-  const std::vector<std::pair<int, int>> modes      = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
-  const auto                             amplitudes = [&]() {
-    std::vector<double> a(2 * modes.size(), 0.0);
-    for (std::size_t i = 0; i < where.size(); ++i)
-      if (!space.constraints().is_constrained(i)) // the periodic copies are counted once
-        for (std::size_t m = 0; m < modes.size(); ++m)
-          {
-            const double arg = 2 * M_PI * (modes[m].first * where[i][0] + modes[m].second * where[i][1]);
-            a[2 * m] += setup.phi[i] * std::cos(arg) / (n * n);
-            a[2 * m + 1] += setup.phi[i] * std::sin(arg) / (n * n);
-          }
-    return a;
+  /// <|phi_q|^2> of a flat 16 x 16 patch in one phase (phi_0 = -1, sigma = 1, xi = 0.1, L_phi = 1,
+  /// k_BT = 1e-4, the linearized scheme) at a fixed tau, over the shells |k|^2 = 1 and 2, each
+  /// divided by the continuum's equipartition k_BT / (A sigma (xi^2 q^2 + f''(phi_0))), with its
+  /// error bar from 20 batch means.
+  struct PhaseVariance
+  {
+    std::array<double, 2> ratio{}, error{}, lambda_tau{};
   };
 
-  const unsigned int               warm_up = 400, steps = 8000, batches = 20;
-  std::vector<std::vector<double>> batch(2, std::vector<double>(batches, 0.0)); // per |q| group
-  for (unsigned int step = 0; step < warm_up + steps; ++step)
-    {
-      setup.step(tau, ThermalNoise{kT, 7, step});
-      if (step < warm_up)
-        continue;
-      const auto   a         = amplitudes();
-      const double per_batch = static_cast<double>(steps / batches);
-      // |phi_q|^2 of a complex mode is cos^2 + sin^2 of its real amplitudes.
-      batch[0][(step - warm_up) * batches / steps] +=
-          (a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3]) / 2 / per_batch;
-      batch[1][(step - warm_up) * batches / steps] +=
-          (a[4] * a[4] + a[5] * a[5] + a[6] * a[6] + a[7] * a[7]) / 2 / per_batch;
-    }
-  EXPECT_LT(std::abs(setup.mass() - mass), 1e-12);
+  PhaseVariance measure_phase_variance(const double tau, const unsigned int warm_up, const unsigned int steps)
+  {
+    constexpr int         n = 16;
+    Testing::FixedSurface setup(n);
+    setup.options.scheme = "linearized";
+    InitialPhaseOptions uniform;
+    uniform.type          = "uniform";
+    uniform.uniform_value = -1;
+    setup.set_phase(uniform);
+    const double mass = setup.mass();
 
+    const double kT = 1e-4, sigma = 1, xi = 0.1, f2 = 9.0 / 4;
+    // Nodal positions of the scalar dofs, for the Fourier amplitudes (the patch
+    // area is 1, n^2 vertices).
+    const auto                   &space = setup.surface.scalar_space();
+    std::vector<dealii::Point<3>> where(space.dof_handler().n_dofs());
+    for (const auto &cell : space.dof_handler().active_cell_iterators())
+      for (const unsigned int v : cell->vertex_indices())
+        where[cell->vertex_dof_index(v, 0)] = cell->vertex(v);
+    // Real amplitudes cos and sin of the modes k = (1,0), (0,1) (|q| = 2 pi) and
+    // (1,1), (1,-1).
+    const std::vector<std::pair<int, int>> modes      = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+    const auto                             amplitudes = [&]() {
+      std::vector<double> a(2 * modes.size(), 0.0);
+      for (std::size_t i = 0; i < where.size(); ++i)
+        if (!space.constraints().is_constrained(i)) // the periodic copies are counted once
+          for (std::size_t m = 0; m < modes.size(); ++m)
+            {
+              const double arg = 2 * M_PI * (modes[m].first * where[i][0] + modes[m].second * where[i][1]);
+              a[2 * m] += setup.phi[i] * std::cos(arg) / (n * n);
+              a[2 * m + 1] += setup.phi[i] * std::sin(arg) / (n * n);
+            }
+      return a;
+    };
+
+    const unsigned int               batches = 20;
+    std::vector<std::vector<double>> batch(2, std::vector<double>(batches, 0.0)); // per |q| group
+    for (unsigned int step = 0; step < warm_up + steps; ++step)
+      {
+        setup.step(tau, ThermalNoise{kT, 7, step});
+        if (step < warm_up)
+          continue;
+        const auto   a         = amplitudes();
+        const double per_batch = static_cast<double>(steps / batches);
+        // |phi_q|^2 of a complex mode is cos^2 + sin^2 of its real amplitudes.
+        batch[0][(step - warm_up) * batches / steps] +=
+          (a[0] * a[0] + a[1] * a[1] + a[2] * a[2] + a[3] * a[3]) / 2 / per_batch;
+        batch[1][(step - warm_up) * batches / steps] +=
+          (a[4] * a[4] + a[5] * a[5] + a[6] * a[6] + a[7] * a[7]) / 2 / per_batch;
+      }
+    EXPECT_LT(std::abs(setup.mass() - mass), 1e-12);
+
+    PhaseVariance result;
+    for (unsigned int group = 0; group < 2; ++group)
+      {
+        const double q2       = std::pow(2 * M_PI, 2) * (group == 0 ? 1 : 2);
+        const double expected = kT / (sigma * (xi * xi * q2 + f2));
+        const double mean     = std::accumulate(batch[group].begin(), batch[group].end(), 0.0) / batches;
+        double       spread   = 0;
+        for (const double b : batch[group])
+          spread += (b - mean) * (b - mean) / (batches - 1);
+        result.ratio[group]      = mean / expected;
+        result.error[group]      = std::sqrt(spread / batches) / expected;
+        result.lambda_tau[group] = setup.material.phase_mobility * sigma * q2 * (xi * xi * q2 + f2) * tau;
+        std::cout << "tau = " << tau << ", |q|^2 = " << q2 << ", lambda tau = " << result.lambda_tau[group]
+                  << ": <|phi_q|^2> / equipartition = " << result.ratio[group] << " +- " << result.error[group]
+                  << ", backward Euler 1 / (1 + lambda tau / 2) = " << 1 / (1 + result.lambda_tau[group] / 2)
+                  << std::endl;
+      }
+    return result;
+  }
+} // namespace
+
+// Linearized about phi_0 every Fourier mode of phi is an Ornstein-Uhlenbeck process with the
+// stationary variance of equipartition; the linearized scheme is backward Euler for it, whose
+// stationary variance is that divided by 1 + lambda tau / 2 (lambda the mode's decay rate).
+// At lambda tau <= 0.06 the bias is under 3 %.
+TEST(Thermal, PhaseFluctuationsInOnePhaseFollowEquipartition)
+{
+  const PhaseVariance v = measure_phase_variance(2.5e-4, 400, 8000);
   for (unsigned int group = 0; group < 2; ++group)
     {
-      const double q2       = std::pow(2 * M_PI, 2) * (group == 0 ? 1 : 2);
-      const double lambda   = setup.material.phase_mobility * sigma * q2 * (xi * xi * q2 + f2);
-      const double expected = kT / (sigma * (xi * xi * q2 + f2)) / (1 + lambda * tau / 2);
-      const double mean     = std::accumulate(batch[group].begin(), batch[group].end(), 0.0) / batches;
-      double       spread   = 0;
-      for (const double b : batch[group])
-        spread += (b - mean) * (b - mean) / (batches - 1);
-      const double error = std::sqrt(spread / batches) / expected;
-      std::cout << "|q|^2 = " << q2 << ": <|phi_q|^2> = " << mean << ", expected " << expected << ", ratio "
-                << mean / expected << " +- " << error << std::endl;
-      EXPECT_LT(error, 0.07); // resolves a 44 % change of the variance
-      EXPECT_LT(std::abs(mean / expected - 1), std::max(3 * error, 0.05));
+      const double expected = 1 / (1 + v.lambda_tau[group] / 2);
+      EXPECT_LT(v.error[group], 0.07); // resolves a 44 % change of the variance
+      EXPECT_LT(std::abs(v.ratio[group] / expected - 1), std::max(3 * v.error[group], 0.05));
     }
+}
+
+// The bias of a fixed tau (issue item: the stationary statistics against tau): at tau = 4e-3,
+// lambda tau = 0.42 and 0.96 on the two shells, and the measured variances fall below
+// equipartition by the backward-Euler factor 1 / (1 + lambda tau / 2) = 0.83 and 0.68, not by
+// nothing (a ratio of 1 is more than three error bars away on the second shell).
+TEST(Thermal, PhaseVarianceAtLargeStepsHasTheBackwardEulerBias)
+{
+  const PhaseVariance v = measure_phase_variance(4e-3, 100, 2000);
+  for (unsigned int group = 0; group < 2; ++group)
+    {
+      const double expected = 1 / (1 + v.lambda_tau[group] / 2);
+      EXPECT_LT(v.error[group], 0.06);
+      EXPECT_LT(std::abs(v.ratio[group] / expected - 1), std::max(3 * v.error[group], 0.05));
+    }
+  EXPECT_GT(1 - v.ratio[1], 3 * v.error[1]); // the bias is measured, not within the noise
 }
 
 // Shape noise (MODEL.md section 10): one step from a flat patch at rest, where the linearized
