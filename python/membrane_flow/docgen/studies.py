@@ -10,11 +10,20 @@ import sys
 
 from membrane_flow import run as reader
 from membrane_flow.docgen import results_and_docs
-from membrane_flow.docgen.branches import load_mesh
 from membrane_flow.pictures import study as plot_study
 from membrane_flow.workflow.budding_time import budding_time_of_run
 from membrane_flow.workflow.continuation import crossing, turning_point
 from membrane_flow.workflow.threshold_time import section as threshold_section
+
+
+def quoted_crossing(docs):
+    """The critical line tension docs/branches.md quotes, from its data file docs/data/branches.json."""
+    path = os.path.join(docs, 'data', 'branches.json')
+    if not os.path.exists(path):
+        return 'the crossing of [branches.md](branches.md)'
+    quote = reader.read_json(path)['quote']
+    return (f"sigma_c = {quote['sigma_c']:.0f} +- {quote['error']:.0f} at level {quote['level']}, "
+            '[branches.md](branches.md)')
 
 
 def main(argv=None):
@@ -78,26 +87,12 @@ def main(argv=None):
 
 
     def adaptive_branch_paragraph(studies):
-        """The paragraph after the 32 x 32 branch table: a pointer to docs/branches.md (python3 -m membrane_flow branch-docs), with
-        the crossing and turning points of the branches followed with one level of local refinement (its main
-        follows and the follows that fill in values between them), when both branches are there."""
-        text = ('[branches.md](branches.md) follows the same two branches with one level of local refinement at the '
-                'interface (`--set "Mesh/Maximum refinement level=1"`, the setting that reproduces uniform 64 x 64), with '
-                'further values between its turning points, and plots both branches on both meshes '
-                '([figure](images/studies/branches.png)), with the neck ratio of every state.')
-        branches = load_mesh(studies, 'branches-adaptive1')
-        if len(branches) < 2:
-            return text + ' The branches with local refinement are not complete (see there).'
-        cross = crossing(branches['down'], branches['up'])
-        if cross is None:
-            return text + ' There the energies do not cross at a value both branches hold.'
-        ends = [f'{n} branch ends in [{min(t):g}, {max(t):g}]' for n, t in
-                (('the protruding', turning_point(branches['down'])), ('the flat-start', turning_point(branches['up'])))
-                if t]
-        incomplete = any(b['incomplete'] for b in branches.values())
-        return (text + f' There the energies cross at sigma = {cross:.0f}' + (' (' + ', '.join(ends) + ')' if ends else '') +
-                ': the critical line tension to quote for the 7.3 setup' +
-                (' (some of its follows are incomplete).' if incomplete else '.'))
+        """The paragraph after the 32 x 32 branch table: a pointer to docs/branches.md (python3 -m membrane_flow
+        branch-docs), which follows both branches at refinement levels 1-3, with the number it quotes."""
+        return ('[branches.md](branches.md) follows the same two branches at one, two and three levels of local '
+                'refinement at the interface (1.5, 3 and 6 cells per xi) and plots them ([figure](images/studies/'
+                'branches.png)), with the neck ratio of every state. ' + quoted_crossing(docs) +
+                ': the critical line tension to quote for the 7.3 setup.')
 
 
     lines = ['# Parameter studies: budding time and critical line tension\n',
@@ -225,7 +220,7 @@ def main(argv=None):
     lines += threshold_section(studies)
     adaptive_threshold = threshold_section(studies, name='threshold-time-adaptive1')
     if adaptive_threshold:  # what the brackets of these runs say (their values, as in the page)
-        adaptive_threshold += ['With one level of refinement the bracket keeps moving with the end time and approaches the energy crossing of the two branches, sigma = 692 ([branches.md](branches.md)), from above: a flat start at sigma = 725 protrudes only at t = 6.35, one at 700 levels off at protrusion 0.92 by t = 10. On this mesh the flat-start threshold by t = 2.5 (775-800, the bisection below: 771-794) overstates the thermodynamic threshold by 12-16 %, and by t = 10 by 1-5 %. The flat-start branch of the continuation, which relaxes at most 3 time units per value and stops at a rate of 1e-3 per unit time, ends in [725, 750] ([branches.md](branches.md)): the run to t = 10 shows that its state at 725 was still creeping towards the protruding state, so that bracket is an upper bound at its tolerance.\n']
+        adaptive_threshold += ['With one level of refinement the bracket keeps moving with the end time and approaches the energy crossing of the two branches from above (' + quoted_crossing(docs) + '): a flat start at sigma = 725 protrudes only at t = 6.35, one at 700 levels off at protrusion 0.92 by t = 10. On this mesh the flat-start threshold by t = 2.5 (775-800, the bisection below: 771-794) overstates the thermodynamic threshold by 18-22 %, and by t = 10 by 6-10 %. The flat-start branch of the continuation, which relaxes at most 3 time units per value and stops at a rate of 1e-3 per unit time, ends in [725, 750] ([branches.md](branches.md)): the run to t = 10 shows that its state at 725 was still creeping towards the protruding state, so that bracket is an upper bound at its tolerance.\n']
     lines += adaptive_threshold
     lines += ['## Mesh convergence and local refinement\n',
               'The uniform 32 x 32 mesh of the paper under-resolves the interface (xi = 0.03, 1.8 cells per xi on the bump). [mesh-convergence.md](mesh-convergence.md) runs the 7.3 setup at sigma = 630 and 1000 to t = 3.1 on uniform 32, 48, 64 and 128 meshes and with one, two and three levels of local refinement. Each refined run matches the uniform mesh whose cells are everywhere as small as its finest ones at a fraction of its cost: one level at the interface (`Mesh/Maximum refinement level = 1`, 1.5 cells per xi) reproduces uniform 64 x 64 within 0.05 % in energy at 0.37-0.39 times its CPU time, two levels (3 cells per xi) reproduce uniform 128 x 128 within 0.34 % (sigma = 630) and 0.95 % (sigma = 1000) at 0.11-0.13 times its CPU time (195-220 s against 1673-1768 s), and three levels (6 cells per xi, finer than uniform 128) agree with it within 0.13 % and 0.64 % at 0.29-0.30 times its CPU time, while uniform 32 x 32 is 3.3 % and 9.3 % above uniform 128. At sigma = 630 the energies converge (uniform: observed order 1.35; the refined sequence agrees with uniform 128 within 0.13 % at three levels); at sigma = 1000, where a bud forms and its neck is still narrowing at t = 3.1, they do not yet (observed order 0.3 on the uniform and on the refined meshes): the finer the mesh, the earlier the bud forms (T_min 1.155 on uniform 32, 0.792 on uniform 128, 0.782 with two levels) and the narrower its neck at the end time. The 7.3 and 7.4 inputs therefore use this setting by default; the studies above set `Mesh/Maximum refinement level = 0` (in their commands and in `experiments/studies/*.json`) and are results of the uniform 32 x 32 mesh, except the flat-start threshold with one level of refinement just above.\n']
@@ -251,8 +246,8 @@ def main(argv=None):
         if uniform:
             text += f'; the uniform 32 x 32 mesh overstates it by {100 * (middle(uniform) / middle(finest) - 1):.0f} %'
         lines += [text + '. It is a threshold of a flat start by a fixed time: the thermodynamic threshold, where '
-                  'the protruding and the flat state have equal energy, lies lower (sigma = 692 with one level, '
-                  '[branches.md](branches.md)). Every run:\n']
+                  'the protruding and the flat state have equal energy, lies lower (' + quoted_crossing(docs) + '). '
+                  'Every run:\n']
         for _, _, mesh, b in refined:
             lines += [f'{mesh[0].upper() + mesh[1:]}:\n'] + critical_runs_table(b) + ['']
     with open(os.path.join(docs, 'studies.md'), 'w') as f:
