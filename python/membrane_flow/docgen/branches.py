@@ -393,12 +393,21 @@ def quote(summary, results):
                      'obtained here. ' + flat_start + '\n')
         return lines, None
     (coarse_level, coarse), (fine_level, fine) = crossed[-2], crossed[-1]
-    # Where the protruding follow's states below the class threshold change the estimate, the spread of
-    # both estimates of the two finest levels is the error bar.
-    estimates = {level: {s_['estimate'], crossing_estimate(s_['past_class']) or s_['estimate']}
-                 for level, s_ in ((coarse_level, coarse), (fine_level, fine))}
-    error = max(abs(a - b) for a in estimates[fine_level] | estimates[coarse_level] for b in estimates[fine_level])
-    converged = error <= CONVERGED * fine['estimate']
+    # Every estimate of the two finest levels: the crossing of the classified states, of the states the
+    # protruding follow reached below the class too, and of the main follows alone (without the values
+    # filled in and relaxed further between them). Their range is the error bar.
+    by_level = {level: branches for directory, level, label, colour, branches, cross in results}
+
+    def estimates_of(level, s_):
+        found = [s_['estimate'], crossing_estimate(s_['past_class'])]
+        b = by_level[level]
+        if any(len(x['follows']) > 1 for x in b.values()):
+            found.append(crossing_estimate(energy_difference({n: merge(x['follows'][:1], n) for n, x in b.items()})))
+        return [e for e in found if e is not None]
+    spread = estimates_of(coarse_level, coarse) + estimates_of(fine_level, fine)
+    low, high = min(spread), max(spread)
+    middle, error = (low + high) / 2, max((high - low) / 2, 1)
+    converged = error <= CONVERGED * middle
     moves = ', '.join('%.0f' % s_['estimate'] + ('' if s_['cross'] is not None else ' (extrapolated)')
                       for _, s_ in crossed)
     text = f'The crossing moves {moves} from level {crossed[0][0]} to level {fine_level}. '
@@ -407,16 +416,17 @@ def quote(summary, results):
                  'difference is extrapolated linearly from the two lowest common values, at the end of the protruding '
                  'branch (see the level\'s section). ')
     if converged:
-        text += (f"Quote **sigma_c = {fine['estimate']:.0f} +- {max(error, 1):.0f}**: the energy crossing at level "
-                 f"{fine_level} ({CELLS_PER_XI[fine_level]} cells per xi at the interface), with the spread of the "
-                 f"estimates of levels {coarse_level} and {fine_level} (below) as its error bar "
-                 f"({100 * error / fine['estimate']:.1f} %, within the {100 * CONVERGED:.0f} % that call it converged). "
-                 'It is the thermodynamic threshold: above it the protruding, budded state has the lower energy.')
+        text += (f"Quote **sigma_c = {middle:.0f} +- {error:.0f}**: the range {low:.0f}-{high:.0f} of the crossing "
+                 f"estimates of levels {coarse_level} and {fine_level} ({CELLS_PER_XI[coarse_level]} and "
+                 f"{CELLS_PER_XI[fine_level]} cells per xi at the interface), {100 * error / middle:.1f} %, within the "
+                 f"{100 * CONVERGED:.0f} % that call it converged. The mesh, the plateau tolerance and the protrusion "
+                 'class each move the estimate within that range (below). It is the thermodynamic threshold: above '
+                 'it the protruding, budded state has the lower energy.')
     else:
-        text += (f"The two finest levels ({coarse_level} and {fine_level}) differ by {error:.0f} "
-                 f"({100 * error / fine['estimate']:.1f} %), more than the {100 * CONVERGED:.0f} % that would call the "
-                 f"crossing converged: quote sigma_c = {fine['estimate']:.0f} only with that spread as its uncertainty.")
-    by_level = {level: branches for directory, level, label, colour, branches, cross in results}
+        text += (f"The crossing estimates of levels {coarse_level} and {fine_level} range over {low:.0f}-{high:.0f} "
+                 f"({100 * error / middle:.1f} % either side of {middle:.0f}), more than the {100 * CONVERGED:.0f} % "
+                 f"that would call the crossing converged: quote sigma_c = {middle:.0f} +- {error:.0f} only as that "
+                 'range.')
     for level, s_ in crossed:
         common = {v for v, _ in s_['difference']}
         below = [(v, d) for v, d in s_['past_class'] if v not in common]
@@ -439,6 +449,26 @@ def quote(summary, results):
                       if any(s_['cross'] is None for _, s_ in crossed[-3:]) else '.'))
         else:
             text += ' The three crossings are not monotone in the level, so no extrapolation is made.'
+    for level, s_ in crossed:
+        b = by_level[level]
+        again = {}  # sigma -> direction -> (energy before, energy after) of states relaxed further at the same sigma
+        for n, x in b.items():
+            for f in x['follows']:
+                for r in f['results']:
+                    if r['from'] == f"{r['value']:g}":
+                        before = next((q for g in x['follows'] if g is not f for q in g['results']
+                                       if q['value'] == r['value'] and q['from'] != r['from']), None)
+                        if before:
+                            again.setdefault(r['value'], {})[n] = (before['energy'], r['energy'])
+        both = {v: d for v, d in again.items() if len(d) == 2}
+        if both:
+            text += (f' At level {level} the states at sigma = ' + ', '.join(f'{v:g}' for v in sorted(both)) +
+                     ' were relaxed further (a tighter plateau, see the level\'s section): E(protruding) - E(flat '
+                     'start) went from ' + ', '.join(f"{d['down'][0] - d['up'][0]:+.3f} to {d['down'][1] - d['up'][1]:+.3f}"
+                                                    for v, d in sorted(both.items())) +
+                     ', each state falling by ' + ', '.join(f"{d['down'][0] - d['down'][1]:.3f} / {d['up'][0] - d['up'][1]:.3f}"
+                                                             for v, d in sorted(both.items())) +
+                     ' (protruding / flat): the protruding states are slides that have not stopped.')
     fine_branches = by_level[fine_level]
     if any(len(b['follows']) > 1 for b in fine_branches.values()):
         main_only = {n: merge(b['follows'][:1], n) for n, b in fine_branches.items()}
@@ -489,8 +519,8 @@ def quote(summary, results):
              'protruding branch\'s neck (+0.3 at level 3), which had moved the crossing to 692, 680 and 690 at '
              'levels 1, 2 and 3. ' + flat_start)
     lines.append(text + '\n')
-    return lines, {'sigma_c': round(fine['estimate'], 1), 'error': round(max(error, 1), 1), 'level': fine_level,
-                   'converged': converged}
+    return lines, {'sigma_c': round(middle, 1), 'error': round(error, 1), 'levels': [coarse_level, fine_level],
+                   'range': [round(low, 1), round(high, 1)], 'converged': converged}
 
 
 SHARPENING_END = 0.05  # the initial sharpening of phi: adaptation follows the interface as it forms

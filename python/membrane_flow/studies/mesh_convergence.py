@@ -49,8 +49,44 @@ UNIFORM = [32, 48, 64]
 CELLS_PER_XI = {1: 1.5, 2: 3.0, 3: 6.0}
 FILE_END_TIME = 3.1  # the base file's End time
 DOC = 'docs/mesh-convergence.md'
+# The sigma = 1000 budded state relaxed beyond t = 3.1 at levels 1-3 (its own study and script).
+BUDDED = 'experiments/studies/budded_state/gauss_bonnet.json'
 FIGURE = 'docs/images/mesh-convergence.png'
 HISTORY = 'docs/images/mesh-convergence-history.png'
+
+
+def budded_state_section():
+    """The sigma = 1000 budded state beyond t = 3.1, from BUDDED (experiments/studies/budded_state/README.md):
+    energies at equal times and at equal neck radii on levels 1-3, with their observed orders."""
+    if not os.path.exists(os.path.join(ROOT, BUDDED)):
+        return []
+    data = run.read_json(os.path.join(ROOT, BUDDED))
+
+    def order(o):  # the differences change sign, grow, or shrink with order p
+        return 'not monotone' if o.get('p') is None else 'none (grows)' if o['p'] <= 0 else f"{o['p']:.1f}"
+
+    def rows(key, label, unit):
+        out = []
+        for where, entry in data[key].items():
+            levels = entry['levels']
+            if not all(levels.get(f'L{l}', {}).get('energy') is not None for l in (1, 2, 3)):
+                continue
+            energies = ', '.join(f"{levels[f'L{l}']['energy']:.3f}" for l in (1, 2, 3))
+            bending = ', '.join(f"{levels[f'L{l}']['bending']:.3f}" for l in (1, 2, 3))
+            line = ', '.join(f"{levels[f'L{l}']['line']:.3f}" for l in (1, 2, 3))
+            o = entry['orders']
+            out.append(f"| {label} = {where}{unit} | {energies} | {order(o['energy'])} | {bending} | "
+                       f"{order(o['bending'])} | {line} | {order(o['line'])} |")
+        return out
+    header = ['| state | energy, levels 1, 2, 3 | order | bending | order | line | order |', '|---|---|---|---|---|---|---|']
+    lines = ['### The budded state beyond t = 3.1', '',
+             'The t = 3.1 energies above are not equilibria: the sigma = 1000 bud keeps closing its neck. '
+             f'[experiments/studies/budded_state](../experiments/studies/budded_state/README.md) ({BUDDED}) runs it '
+             'on at levels 1, 2, 3 (1.5, 3, 6 cells per xi) and compares the levels at equal times and, since the '
+             'slowly closing states are nearly stationary, at equal neck radii (the Gaussian energy of the uniform '
+             'kappa_G is exactly 0 there). "order": log2 of the ratio of the two differences, where they shrink.', '']
+    lines += header + rows('equal_time', 't', '') + rows('equal_neck_radius', 'neck radius', '') + ['']
+    return lines
 
 
 # ----------------------------------------------------------------------------------------------
@@ -645,6 +681,7 @@ def write_report(results, sigmas, levels, command, end_time, exe):
         parts += ['Findings (computed from the table):', '']
         parts += [f'- {t}' for t in conclusions(results, s, levels)]
         parts += ['']
+    parts += budded_state_section()
     parts += [f'![final energy against cells]({os.path.relpath(FIGURE, "docs")})', '',
               'Final energy against the number of cells at the end of the run (log scale). Lines: uniform '
               f'{uniform_names(UNIFORM)}; '
