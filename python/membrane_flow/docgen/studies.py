@@ -23,7 +23,9 @@ def quoted_crossing(docs):
         return 'the crossing of [branches.md](branches.md)'
     quote = reader.read_json(path)['quote']
     levels = ' and '.join(str(level) for level in quote['levels'])
-    return f"sigma_c = {quote['sigma_c']:.0f} +- {quote['error']:.0f} from levels {levels}, [branches.md](branches.md)"
+    caveat = '' if quote['converged'] else ', not converged in the plateau tolerance'
+    return (f"sigma_c = {quote['sigma_c']:.0f} +- {quote['error']:.0f} from levels {levels}{caveat}, "
+            '[branches.md](branches.md)')
 
 
 def main(argv=None):
