@@ -5,14 +5,10 @@
 
 namespace Membrane
 {
-  double GaussianEnergy::constant_part() const
-  {
-    return 0.5 * (material.gaussian_rigidity->value(1.0) + material.gaussian_rigidity->value(-1.0));
-  }
-
   void GaussianEnergy::prepare(const Surface &surface, const Geometry &)
   {
     euler_characteristic = surface.euler_characteristic();
+    constant_part = 0.5 * (material.gaussian_rigidity->value(1.0) + material.gaussian_rigidity->value(-1.0));
   }
 
   void GaussianEnergy::add_energy(const TermPoint &point, const double ds, EnergyTerms &energy) const
@@ -20,12 +16,12 @@ namespace Membrane
     // Only the phase-dependent part kappa_G(phi) - kappa_G_c is integrated against the projected
     // K^m; the constant part is exact by Gauss-Bonnet (add_global_energy). The projected K does not
     // integrate to 2 pi chi, and its error at a narrow neck grows with the level.
-    energy.gaussian += (material.gaussian_rigidity->value(point.phi) - constant_part()) * point.K * ds;
+    energy.gaussian += (material.gaussian_rigidity->value(point.phi) - constant_part) * point.K * ds;
   }
 
   void GaussianEnergy::add_global_energy(EnergyTerms &energy) const
   {
-    energy.gaussian += 2 * M_PI * euler_characteristic * constant_part(); // Gauss-Bonnet
+    energy.gaussian += 2 * M_PI * euler_characteristic * constant_part; // Gauss-Bonnet
   }
 
   double GaussianEnergy::potential(const TermPoint &point) const

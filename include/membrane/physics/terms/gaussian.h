@@ -24,7 +24,7 @@ namespace Membrane
   private:
     const Material &material;
     int             euler_characteristic = 0;
-    /// kappa_G_c, the part of kappa_G(phi) whose energy Gauss-Bonnet gives exactly.
-    double constant_part() const;
+    /// kappa_G_c, the part of kappa_G(phi) whose energy Gauss-Bonnet gives exactly (set by prepare).
+    double constant_part = 0;
   };
 } // namespace Membrane
