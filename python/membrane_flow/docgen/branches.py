@@ -30,7 +30,7 @@ import sys
 from . import results_and_docs
 from .. import run as reader
 from ..run import load_statistics
-from ..workflow.continuation import crossing, follow_branch, turning_point
+from ..workflow.continuation import crossing, first_zero, follow_branch, turning_point
 from ..workflow.critical import classifier
 
 CLASSIFY = 'protrusion:0.95'
@@ -187,12 +187,10 @@ def energy_difference(branches, past_class=False):
 
 
 def crossing_estimate(difference):
-    """The zero of E(protruding) - E(flat start): linear interpolation at its lowest sign change, else
-    extrapolated_crossing()."""
-    for (v0, d0), (v1, d1) in zip(difference, difference[1:]):
-        if d0 * d1 <= 0:
-            return v0 - d0 * (v1 - v0) / (d1 - d0)
-    return extrapolated_crossing(difference)
+    """The zero of E(protruding) - E(flat start): linear interpolation at its lowest sign change
+    (continuation.first_zero), else extrapolated_crossing()."""
+    zero = first_zero(difference)
+    return zero if zero is not None else extrapolated_crossing(difference)
 
 
 def plot(results, path, title='7.3 setup: both branches in the line tension', sharp=SHARP_INTERFACE):

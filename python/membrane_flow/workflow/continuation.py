@@ -55,7 +55,12 @@ def crossing(a, b):
     energy_b = {p['value']: p['energy'] for p in b['points']}
     common = sorted(v for v in (p['value'] for p in a['points']) if v in energy_b)
     energy_a = {p['value']: p['energy'] for p in a['points']}
-    difference = [(v, energy_a[v] - energy_b[v]) for v in common]
+    return first_zero([(v, energy_a[v] - energy_b[v]) for v in common])
+
+
+def first_zero(difference):
+    """The lowest parameter where [(value, difference)], sorted by value, vanishes (linear
+    interpolation at its first sign change), or None."""
     for (v0, d0), (v1, d1) in zip(difference, difference[1:]):
         if d0 == 0:
             return v0
