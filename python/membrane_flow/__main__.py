@@ -31,6 +31,7 @@ COMMANDS = {
     'study-7.1': ('studies.sorting_7_1', 'experiment 7.1 with one change at a time (docs/experiments.md)'),
     'axisymmetric-vesicle': ('studies.axisymmetric_vesicle',
                              'reference shapes of revolution (sphere, spheroid, prolate branch)'),
+    'spectrum': ('spectra', 'a thermal run\'s stationary height or shape spectrum against equilibrium'),
     'sharp-interface': ('sharp_interface',
                         'the sharp-interface limit of 7.3 (experiments/studies/sharp_interface)'),
     # the generated pages of docs/
