@@ -4,7 +4,8 @@
   analyze.py flicker RUN [--kT 0.05] [--skip T] [--plot OUT.png]
                                                     shape spectrum, time mean over t >= T, against
                                                     Milner and Safran at Sigma = 0 (--plot: its history)
-  analyze.py domains RUN [RUN ...] [--min-area A]   phase-A domains (connected phi > 0) per snapshot
+  analyze.py domains RUN [RUN ...] [--min-area A] [--plot OUT.png]
+                                                    phase-A domains (connected phi > 0) per snapshot
   analyze.py budding RUN [RUN ...]                  neck ratio, protrusion and outcome at t = 0.05, 0.1
   --json FILE adds the result under the run's name (after --prefix) to FILE (a JSON object).
 Runs cut short (the docs test runs 3 steps) give what they have."""
@@ -114,6 +115,10 @@ def domains(run, min_area):
     # a domain that stays: from this snapshot on, every later one has a domain
     lasting = next((row['t'] for k, row in enumerate(rows) if all(x['domains'] > 0 for x in rows[k:])), None)
     above = np.nonzero(s['phi_max'] > 0.9)[0]
+    if 'phase_wavenumber' in s:
+        # the structure factor's mean wavenumber (degree l on a closed surface) at each snapshot
+        for row in rows:
+            row['phase_wavenumber'] = float(s['phase_wavenumber'][int(np.argmin(np.abs(s['time'] - row['t'])))])
     return {'steps': int(s['step'][-1]), 't_end': float(s['time'][-1]),
             'energy': [float(s['energy'][0]), float(s['energy'][-1])],
             'phi_range_end': [float(s['phi_min'][-1]), float(s['phi_max'][-1])],
@@ -123,6 +128,30 @@ def domains(run, min_area):
             'first_snapshot_with_a_domain': first, 'domain_from_snapshot_on': lasting,
             'first_t_phi_max_above_0.9': float(s['time'][above[0]]) if above.size else None,
             'max_domains': max(row['domains'] for row in rows), 'snapshots': rows}
+
+
+def plot_domains(run, result, path):
+    """Number of domains, the largest domain's area and (with Output/Structure factor shells) the
+    structure factor's mean wavenumber q_1 against time."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    rows = result['snapshots']
+    t = [r['t'] for r in rows]
+    s = mf.load_run(run).statistics
+    panels = 3 if 'phase_wavenumber' in s else 2
+    fig, axes = plt.subplots(panels, 1, figsize=(6, 1.9 * panels), sharex=True)
+    axes[0].step(t, [r['domains'] for r in rows], where='post')
+    axes[0].set_ylabel('domains')
+    axes[1].plot(t, [r['largest_area'] for r in rows], 'o-', ms=3)
+    axes[1].set_ylabel('largest domain area')
+    if panels == 3:
+        axes[2].plot(s['time'], s['phase_wavenumber'], lw=0.8)
+        axes[2].set_ylabel('q_1 (degree l)')
+    axes[-1].set_xlabel('t')
+    axes[0].set_title(f'{os.path.basename(os.path.normpath(run))}: phase-A domains (phi > 0)', fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
 
 
 def budding(run):
@@ -152,7 +181,8 @@ def main():
     parser.add_argument('--min-area', type=float, default=0.02)
     parser.add_argument('--json')
     parser.add_argument('--prefix', default='', help='put before each run name in the results')
-    parser.add_argument('--plot', help='flicker: plot the spectrum against time into this PNG')
+    parser.add_argument('--plot', help='flicker: plot the spectrum against time; domains: the domains and the '
+                        'structure factor\'s mean wavenumber against time (of the last run); into this PNG')
     a = parser.parse_args()
     results = {}
     for run in a.runs:
@@ -163,6 +193,8 @@ def main():
                 plot_flicker(run, a.kT, a.skip, a.plot)
         elif a.what == 'domains':
             results[name] = domains(run, a.min_area)
+            if a.plot:
+                plot_domains(run, results[name], a.plot)
         else:
             results[name] = budding(run)
     print(json.dumps(results, indent=1))
