@@ -337,11 +337,37 @@ namespace Membrane
     for (const auto &[scalar, value] : scalars)
       AssertThrow(std::isfinite(value), ExcMessage(name + " is corrupt: <" + scalar + "> is not finite"));
 
-    bool all_found = true;
+    // On the periodic patch a vertex on the edges u_k = 0 and 1 exists twice; the file holds the copy
+    // that carried the dofs when it was written, and after a mesh that refined and coarsened that can be
+    // the other one than in the mesh rebuilt from the checkpoint: look for the periodic images too.
+    const auto find = [&](const Point<spacedim> &x) {
+      auto it = values.find({x[0], x[1], x[2]});
+      if (it != values.end() || !surface.periodic())
+        return it;
+      for (const double dx : {0.0, 1.0, -1.0})
+        for (const double dy : {0.0, 1.0, -1.0})
+          if ((dx != 0 || dy != 0) && (dx == 0 || x[0] == (dx > 0 ? 0.0 : 1.0)) &&
+              (dy == 0 || x[1] == (dy > 0 ? 0.0 : 1.0)))
+            {
+              it = values.find({x[0] + dx, x[1] + dy, x[2]});
+              if (it != values.end())
+                return it;
+            }
+      return values.end();
+    };
+    bool        all_found = true;
+    std::string missing; // the first vertex of this mesh the file does not hold, for the message
     for_each_owned_vertex(surface, [&](const Point<spacedim> &x, const auto &vector_dofs, const auto dof) {
-      const auto it = values.find({x[0], x[1], x[2]});
+      const auto it = find(x);
       if (it == values.end())
         {
+          if (all_found)
+            {
+              std::ostringstream where;
+              where << std::setprecision(17) << "; the vertex (" << x[0] << ", " << x[1] << ", " << x[2]
+                    << ") is not in the file";
+              missing = where.str();
+            }
           all_found = false;
           return;
         }
@@ -368,7 +394,7 @@ namespace Membrane
                   Utilities::MPI::sum(local_vertices, comm) == values.size(),
                 ExcMessage(name + " was written on another mesh (" + std::to_string(values.size()) +
                            " vertices; this run has " + std::to_string(Utilities::MPI::sum(local_vertices, comm)) +
-                           "): check <Mesh/Cells per side> and the refinement entries"));
+                           missing + "): check <Mesh/Cells per side> and the refinement entries"));
     displacement.compress(VectorOperation::insert);
     phi.compress(VectorOperation::insert);
     reference_areas.compress(VectorOperation::insert);
