@@ -283,6 +283,12 @@ namespace Membrane
         words >> scalars[name];
       }
     const std::string name = "Entry <Checkpoint/Resume from>: <" + path + ">";
+    // On the periodic patch a vertex on the edges u_k = 0 and 1 exists twice; the file holds the copy
+    // that carried the dofs when it was written, and after a mesh that refined and coarsened that can be
+    // the other one than in the mesh rebuilt from the checkpoint. Both copies get the key of u_k = 0.
+    const auto key = [periodic = surface.periodic()](const double x, const double y, const double z) -> Key {
+      return periodic ? Key{x == 1.0 ? 0.0 : x, y == 1.0 ? 0.0 : y, z} : Key{x, y, z};
+    };
     std::map<Key, std::array<double, 9>> values;
     for (std::size_t i = 0; i < n; ++i)
       {
@@ -304,7 +310,7 @@ namespace Membrane
           finite = finite && std::isfinite(value);
         AssertThrow(finite, ExcMessage(name + " is corrupt: vertex line " + std::to_string(i + 1) +
                                          " is not finite numbers: <" + line + ">"));
-        values[{x, y, z}] = v;
+        values[key(x, y, z)] = v;
       }
     AssertThrow(std::getline(in, line) && line == "statistics", ExcMessage(name + " is truncated"));
     statistics_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -337,28 +343,10 @@ namespace Membrane
     for (const auto &[scalar, value] : scalars)
       AssertThrow(std::isfinite(value), ExcMessage(name + " is corrupt: <" + scalar + "> is not finite"));
 
-    // On the periodic patch a vertex on the edges u_k = 0 and 1 exists twice; the file holds the copy
-    // that carried the dofs when it was written, and after a mesh that refined and coarsened that can be
-    // the other one than in the mesh rebuilt from the checkpoint: look for the periodic images too.
-    const auto find = [&](const Point<spacedim> &x) {
-      auto it = values.find({x[0], x[1], x[2]});
-      if (it != values.end() || !surface.periodic())
-        return it;
-      for (const double dx : {0.0, 1.0, -1.0})
-        for (const double dy : {0.0, 1.0, -1.0})
-          if ((dx != 0 || dy != 0) && (dx == 0 || x[0] == (dx > 0 ? 0.0 : 1.0)) &&
-              (dy == 0 || x[1] == (dy > 0 ? 0.0 : 1.0)))
-            {
-              it = values.find({x[0] + dx, x[1] + dy, x[2]});
-              if (it != values.end())
-                return it;
-            }
-      return values.end();
-    };
     bool        all_found = true;
     std::string missing; // the first vertex of this mesh the file does not hold, for the message
     for_each_owned_vertex(surface, [&](const Point<spacedim> &x, const auto &vector_dofs, const auto dof) {
-      const auto it = find(x);
+      const auto it = values.find(key(x[0], x[1], x[2]));
       if (it == values.end())
         {
           if (all_found)
