@@ -50,6 +50,23 @@ class CommandLine(unittest.TestCase):
         self.assertEqual(result.returncode, 2)
         self.assertIn('unknown option --fast', result.stderr)
 
+    def test_spectrum_names_the_bad_option_and_the_missing_column(self):
+        with tempfile.TemporaryDirectory() as scratch:
+            with open(os.path.join(scratch, 'statistics.txt'), 'w') as f:
+                f.write('# step time tau gamma_mean gradient_energy well_energy area\n0 0 1e-3 0 0 0 1\n')
+            result = command_line('spectrum', 'patch', scratch, '--kT', '-1')
+            self.assertEqual(result.returncode, 2)
+            self.assertIn('--kT must be > 0 (got -1)', result.stderr)
+            result = command_line('spectrum', 'patch', scratch, '--kT', '1e-4', '--batches', '1')
+            self.assertEqual(result.returncode, 2)
+            self.assertIn('--batches must be >= 2 (got 1)', result.stderr)
+            # a run without the height columns (not a patch run): exit 1 naming the column
+            with open(os.path.join(scratch, 'statistics.txt'), 'a') as f:
+                f.writelines(f'{i} {i * 1e-3} 1e-3 0 0 0 1\n' for i in range(1, 60))
+            result = command_line('spectrum', 'patch', scratch, '--kT', '1e-4', '--skip', '0')
+            self.assertEqual(result.returncode, 1, result.stdout)
+            self.assertIn("no statistics column 'height_mode_1'", result.stderr)
+
     def test_shared_exe_option_reaches_the_command(self):
         with tempfile.TemporaryDirectory() as scratch:
             spec = os.path.join(scratch, 'sweep.json')

@@ -215,6 +215,13 @@ def main(argv=None):
     parser.add_argument('--batches', type=int, default=20)
     parser.add_argument('--static', help='sphere: the same run at k_BT = 0, whose mean shape is subtracted')
     args = parser.parse_args(argv)
+    for name, value, low in (('--kT', args.kT, 0), ('--kappa', args.kappa, 0), ('--mobility', args.mobility, 0)):
+        if not value > low:  # also NaN
+            parser.error(f'{name} must be > 0 (got {value:g})')
+    if args.batches < 2:
+        parser.error(f'--batches must be >= 2 (got {args.batches})')
+    if args.skip is not None and args.skip < 0:
+        parser.error(f'--skip must be >= 0 (got {args.skip})')
     try:
         if args.surface == 'patch':
             result = patch_spectrum(args.run, args.kT, args.kappa, args.mobility,
@@ -226,7 +233,10 @@ def main(argv=None):
         # A run cut short (the docs test runs 3 steps of each command): nothing to compare.
         print(f'spectrum: {args.run}: {e}')
         return 0
-    except (OSError, KeyError, ValueError) as e:
+    except KeyError as e:
+        print(f'spectrum: {args.run}: no statistics column {e} (a {args.surface} run at k_BT > 0?)', file=sys.stderr)
+        return 1
+    except (OSError, ValueError) as e:
         print(f'spectrum: {e}', file=sys.stderr)
         return 1
     print(table(result))
