@@ -180,7 +180,7 @@ namespace Membrane
       {
         const auto [n_refine, n_coarsen] = mark_cells(triangulation, surface, geometry, phi,
                                                       parameters.material.transition_length,
-                                                      parameters.adaptivity, base_level);
+                                                      parameters.adaptivity, base_level, true);
         (void)n_coarsen;
         if (n_refine == 0 || !refinement_fits(n_refine))
           break;

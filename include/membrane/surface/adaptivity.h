@@ -6,15 +6,19 @@
 //    interface (phi varies across it by more than h times half the largest slope
 //    3 / (4 xi) of the equilibrium profile tanh(3 s / (4 xi))), and
 //    h > xi / (Interface cells per xi). A broad profile that has not sharpened yet
-//    (the smooth bump start) is not refined for;
+//    (the smooth bump start) is not refined for during the run, but (Refine broad profiles)
+//    the initial mesh is refined to the same target wherever |phi0| < Interface phi at a
+//    vertex, and such cells are not coarsened while phi there stays in that range, so that
+//    a broad start sharpens on cells that are already fine;
 //  - geometry: h |kappa| > Curvature resolution, with |kappa| the larger principal
 //    curvature |H|/2 + sqrt(H^2/4 - K) of the mean H and K of the cell's vertices.
 // A cell is refined if an indicator asks for it and its level is below Maximum
 // refinement level; it is coarsened (down to the input mesh) if neither indicator
 // would ask for it at twice its size, and if coarsening drops no more than the interpolation
 // error Coarsening tolerance: the family's five inner vertices lie within that fraction of the
-// parent's size from where refining it again would put them (hermite_midpoint). Adaptation
-// happens every Interval steps.
+// parent's size, along their normals, from where refining it again would put them
+// (refined_vertices), or from the chord of an edge whose neighbour stays refined (the hanging
+// vertex's place). Adaptation happens every Interval steps.
 
 #include <membrane/surface/geometry.h>
 
@@ -32,6 +36,7 @@ namespace Membrane
     double       interface_phi          = 0.9; ///< |phi| below this at a vertex marks the interface (resolution warning)
     double       curvature_resolution   = 0.3; ///< target h |kappa_max| <= this
     bool         smooth_new_vertices    = true; ///< new vertices on a smooth (Hermite) surface
+    bool         refine_broad_profiles  = false; ///< refine |phi0| < interface_phi before the first step, keep it fine
     double       coarsening_tolerance   = 3e-3; ///< largest surface interpolation error (per parent size) a coarsening may drop
     double       memory_limit           = 0;    ///< bytes of all ranks after a refinement (0: 80 % of available)
 
@@ -68,11 +73,13 @@ namespace Membrane
 
   /// Set refinement and coarsening flags on the locally owned cells of `triangulation`
   /// (the surface's) by the indicators above; `base_level` is the level of the input
-  /// mesh. Returns the global numbers of cells flagged for refinement and coarsening.
+  /// mesh. `initial_state`: the mesh of the initial state, where (with Refine broad
+  /// profiles) a broad profile counts as interface. Returns the global numbers of cells
+  /// flagged for refinement and coarsening.
   std::pair<unsigned int, unsigned int> mark_cells(Triangulation &triangulation, const Surface &surface,
                                                    const Geometry &geometry, const Vector &phi_ghosted,
                                                    double transition_length, const AdaptivityOptions &options,
-                                                   unsigned int base_level);
+                                                   unsigned int base_level, bool initial_state = false);
 
   /// The largest h kappa_max over the cells (h the cell size, kappa_max the larger principal
   /// curvature of the cell's mean H and K): the angle of arc, in radians, that the most bent
