@@ -127,3 +127,83 @@ TEST(Adaptivity, CoarseningKeepsFamiliesTheCoarseMeshCannotCarry)
   EXPECT_EQ(coarsened(3e-3), 4 * 255u);
   EXPECT_EQ(coarsened(0), 0u);
 }
+
+// Only the normal part of an inner vertex's offset from the Hermite point changes the surface: a
+// centre vertex moved by 1 % of the parent's size along x, nearly tangential on this surface (slopes
+// below 0.13), is another parametrization of the same surface, and its family is coarsened at
+// Coarsening tolerance 3e-3 (the same move along z keeps it: the test above).
+TEST(Adaptivity, CoarseningIgnoresTangentialOffsets)
+{
+  Testing::FixedSurface setup(16);
+  const unsigned int    base = setup.tria.n_global_levels() - 1;
+  setup.tria.refine_global(1);
+  setup.surface.setup();
+  set_cosine_modes(setup.surface, {{0.02, 1, 1, 0}, {0.02, 1, -1, 0}});
+  InitialPhaseOptions uniform;
+  uniform.type          = "uniform";
+  uniform.uniform_value = -1;
+  setup.set_phase(uniform);
+  Vector displaced = setup.surface.vector_space().make_owned();
+  displaced        = setup.surface.displacement();
+  for (const auto &cell : setup.surface.vector_space().dof_handler().active_cell_iterators())
+    if (cell->parent()->center().distance(dealii::Point<3>(6.5 / 16, 4.5 / 16, 0)) < 1e-9 &&
+        cell == cell->parent()->child(0))
+      {
+        const auto dof  = cell->vertex_dof_index(3, 0);
+        displaced[dof] = displaced[dof] + 0.01 / 16;
+      }
+  displaced.compress(dealii::VectorOperation::insert);
+  setup.surface.set_displacement(displaced);
+  setup.update_geometry();
+
+  AdaptivityOptions options;
+  options.max_level            = 1;
+  options.coarsening_tolerance = 3e-3;
+  EXPECT_EQ(mark(setup, options, base).second, 4 * 256u);
+}
+
+// A family next to a cell that stays refined leaves the midpoint of their common edge as a hanging
+// vertex, which the constraints put on the chord of the coarse edge: a dent of kappa H^2 / 8, about
+// 1.2 % of the parent's size H = 1/16 on this surface (normal curvature up to 1.6). At Coarsening
+// tolerance 3e-3 the four families beside a cell refined twice are kept, the other families coarsened;
+// without the bound (1) they are coarsened too.
+TEST(Adaptivity, CoarseningKeepsTheDentOfAHangingVertex)
+{
+  Testing::FixedSurface setup(16);
+  const unsigned int    base = setup.tria.n_global_levels() - 1;
+  setup.tria.refine_global(1);
+  const dealii::Point<3> refined_centre(8.5 / 16, 8.5 / 16, 0);
+  for (const auto &cell : setup.tria.active_cell_iterators())
+    if (cell->parent()->center().distance(refined_centre) < 1e-9)
+      cell->set_refine_flag();
+  setup.tria.execute_coarsening_and_refinement();
+  setup.surface.setup();
+  set_cosine_modes(setup.surface, {{0.02, 1, 1, 0}, {0.02, 1, -1, 0}});
+  InitialPhaseOptions uniform;
+  uniform.type          = "uniform";
+  uniform.uniform_value = -1;
+  setup.set_phase(uniform);
+  setup.update_geometry();
+
+  AdaptivityOptions options;
+  options.max_level = 2;
+  // The families (level-1 children of a level-0 cell) that share an edge with the refined cell.
+  const auto beside = [&](const auto &cell) {
+    const auto parent = cell->parent();
+    return parent->level() == static_cast<int>(base) &&
+           std::abs(parent->center().distance(refined_centre) - 1.0 / 16) < 1e-9;
+  };
+  const auto flagged_beside = [&](const double tolerance) {
+    options.coarsening_tolerance = tolerance;
+    mark(setup, options, base);
+    unsigned int n = 0, others = 0;
+    for (const auto &cell : setup.tria.active_cell_iterators())
+      if (cell->level() == static_cast<int>(base) + 1)
+        (beside(cell) ? n : others) += cell->coarsen_flag_set();
+    return std::make_pair(n, others);
+  };
+  const auto [kept, others] = flagged_beside(3e-3);
+  EXPECT_EQ(kept, 0u);
+  EXPECT_EQ(others, 4 * (256u - 5)); // every family but the refined cell's and its four neighbours'
+  EXPECT_EQ(flagged_beside(1).first, 16u);
+}

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace Membrane
 {
@@ -263,7 +264,11 @@ namespace Membrane
             cell->clear_coarsen_flag();
           return;
         }
+      // Decided on the indicators' flags, cleared afterwards: a family kept here does not make its
+      // neighbours' edges hanging in the chord test of coarsening_error (which would cascade, in the
+      // order of the cells, through every family beside a kept one).
       const LocalValues normals(geometry.normal);
+      std::vector<typename Triangulation::cell_iterator> keep;
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned() && cell->coarsen_flag_set() && cell->level() > 0 && cell->parent()->child(0) == cell)
           {
@@ -272,14 +277,13 @@ namespace Membrane
             for (unsigned int c = 0; c < parent->n_children(); ++c)
               family = family && parent->child(c)->is_active() && parent->child(c)->is_locally_owned() &&
                        parent->child(c)->coarsen_flag_set();
-            bool keep = !family;
-            if (family)
-              keep = coarsening_error(surface, parent, normals) > tolerance;
-            if (keep)
-              for (unsigned int c = 0; c < parent->n_children(); ++c)
-                if (parent->child(c)->is_active())
-                  parent->child(c)->clear_coarsen_flag();
+            if (!family || coarsening_error(surface, parent, normals) > tolerance)
+              keep.push_back(parent);
           }
+      for (const auto &parent : keep)
+        for (unsigned int c = 0; c < parent->n_children(); ++c)
+          if (parent->child(c)->is_active())
+            parent->child(c)->clear_coarsen_flag();
     }
   } // namespace
 
