@@ -42,8 +42,7 @@ namespace Membrane
                       "Cells are coarsened (where the indicators allow it) only where that drops no more than this "
                       "interpolation error of the surface: the inner vertices of the four cells lie within this "
                       "fraction of the parent cell's size, along their normals, from where refining the parent again "
-                      "would place them (Smooth new vertices), or, on an edge whose neighbour stays refined, from the "
-                      "edge's chord (where the hanging vertex goes). Coarsening changes the bending energy at second order in this error "
+                      "would place them (Smooth new vertices). Coarsening changes the bending energy at second order in this error "
                       "(about kappa times its square per parent cell); without the bound the coarsenings of a "
                       "budding run raise the energy by a few percent. 1: no bound (every cell the indicators allow "
                       "is coarsened); 0: never coarsen.");
@@ -224,29 +223,8 @@ namespace Membrane
       const auto offset = [&](const unsigned int c, const unsigned int v, const Point<spacedim> &p) {
         return std::abs((position(c, v) - p) * normal(c, v));
       };
-      // An edge whose neighbour stays refined keeps its midpoint as a hanging vertex, which the
-      // constraints put on the chord of the coarse edge: that dent (kappa H^2 / 8 across an edge of
-      // length H) is what the coarsening drops there, and each one is bending energy.
-      const auto stays_refined = [&](const unsigned int face) {
-        const bool periodic = parent->at_boundary(face) && parent->has_periodic_neighbor(face);
-        if (parent->at_boundary(face) && !periodic)
-          return false;
-        const auto neighbor = periodic ? parent->periodic_neighbor(face) : parent->neighbor(face);
-        if (!neighbor->has_children())
-          return false;
-        for (unsigned int c = 0; c < neighbor->n_children(); ++c)
-          if (!neighbor->child(c)->is_active() || !neighbor->child(c)->is_locally_owned() ||
-              !neighbor->child(c)->coarsen_flag_set())
-            return true;
-        return false;
-      };
-      const auto edge = [&](const unsigned int face, const unsigned int c, const unsigned int v, const unsigned int a,
-                            const unsigned int b, const Point<spacedim> &hermite) {
-        return offset(c, v, stays_refined(face) ? Point<spacedim>(0.5 * (corner[a] + corner[b])) : hermite);
-      };
-      return std::max({edge(2, 0, 1, 0, 1, predicted[0]), edge(0, 0, 2, 0, 2, predicted[1]),
-                       edge(1, 3, 1, 1, 3, predicted[2]), edge(3, 3, 2, 2, 3, predicted[3]),
-                       offset(0, 3, predicted[4])}) /
+      return std::max({offset(0, 1, predicted[0]), offset(0, 2, predicted[1]), offset(3, 1, predicted[2]),
+                       offset(3, 2, predicted[3]), offset(0, 3, predicted[4])}) /
              size;
     }
 
@@ -264,9 +242,6 @@ namespace Membrane
             cell->clear_coarsen_flag();
           return;
         }
-      // Decided on the indicators' flags, cleared afterwards: a family kept here does not make its
-      // neighbours' edges hanging in the chord test of coarsening_error (which would cascade, in the
-      // order of the cells, through every family beside a kept one).
       const LocalValues normals(geometry.normal);
       std::vector<typename Triangulation::cell_iterator> keep;
       for (const auto &cell : triangulation.active_cell_iterators())

@@ -17,8 +17,7 @@
 // would ask for it at twice its size, and if coarsening drops no more than the interpolation
 // error Coarsening tolerance: the family's five inner vertices lie within that fraction of the
 // parent's size, along their normals, from where refining it again would put them
-// (refined_vertices), or from the chord of an edge whose neighbour stays refined (the hanging
-// vertex's place). Adaptation happens every Interval steps.
+// (refined_vertices). Adaptation happens every Interval steps.
 
 #include <membrane/surface/geometry.h>
 
