@@ -52,9 +52,9 @@ namespace Membrane
                       "its formulas on the finer mesh, and do not coarsen cells while phi there stays in that range. "
                       "A broad start (the bump profile, a random mixture) then sharpens on cells that are already "
                       "fine. Without it the refinements that follow the sharpening each raise the bending energy by "
-                      "about 0.1 (7.3 at sigma = 1000 to t = 0.1: +0.51, +0.70, +0.99 with 1, 2, 3 levels; with it "
-                      "+0.002, +0.03, +0.07), at the price of more cells (7.3: 1.8 times, for the whole run, because "
-                      "cells of the curved bump that were refined stay refined). For convergence studies.");
+                      "0.2-0.4 (7.3 at sigma = 1000 to t = 0.05: +0.51, +0.66, +0.97 with 1, 2, 3 levels; with it "
+                      "+0.05, +0.22, +0.21, all in coarsenings), at the price of 1.2-1.5 times the cells (cells of the "
+                      "curved bump, once refined, stay refined). For convergence studies.");
     prm.declare_entry("Smooth new vertices", "true", Patterns::Bool(),
                       "Place the vertices created by refinement on a smooth surface through the old vertices and "
                       "their normals (cubic Hermite edges) instead of on the bilinear surface, whose kinks along the "

@@ -47,6 +47,8 @@ PAPER_NO_BUD, PAPER_BUD = 540, 630  # the paper's Fig. 7.4 B and C
 LONG_RESULTS = 'experiments/studies/branches/gauss-bonnet/long-relaxation.json'
 DISTINCT_PROTRUSION = 0.03  # a protrusion gap that long relaxation leaves: two distinct states
 SHARP_RESULTS = 'experiments/studies/sharp_interface/results.json'  # the sharp-interface limit, from the repository
+XI_RESULTS = 'experiments/studies/branches/xi-series/results.json'  # the branches at xi = 0.03, 0.02, 0.015
+SHARPENING_RESULTS = 'experiments/studies/adaptation_sharpening/results.json'  # adaptation while phi sharpens
 SHORT = {'level 1 (1.5 cells per xi)': 'level 1', 'level 2 (3 cells per xi)': 'level 2',  # labels of the bottom panel
          'level 3 (6 cells per xi)': 'level 3', '7.4 D, one level of local refinement': '7.4 D'}
 # The domain-size analysis (paper 7.4 D: integral phi ds = -0.95 against -0.85 of 7.3), on the mesh
@@ -665,7 +667,108 @@ def adaptation_section(results):
     return lines
 
 
-def write_data(results, summary, quoted, path):
+def bracket(pair, digits=6):
+    """'[a, b]' of a bracket, 'not reached' for None."""
+    return f'[{pair[0]:.{digits}g}, {pair[1]:.{digits}g}]' if pair else 'not reached'
+
+
+def xi_series_section(data):
+    """The branch ends and crossings at three interface widths xi with lambda = sigma xi fixed and the mesh
+    scaled with xi, against the sharp-interface calculation and the paper's statements."""
+    if not data:
+        return []
+    sharp, paper = data.get('sharp_interface', {}), data.get('paper', {})
+    lines = ['## The interface-width limit\n',
+             'The same follows at three transition lengths xi with the line tension lambda = sigma xi held fixed '
+             '(`Material/Transition length` 0.03, 0.02, 0.015 and sigma scaled by 0.03 / xi) and every length of the '
+             'mesh scaled with xi (`Mesh/Cells per side` 32, 48, 64 at two levels, 3 interface cells per xi). '
+             'lambda is the line tension of the sharp-interface energy (c = 1 for this double well). Runs, commands '
+             'and tables: [experiments/studies/branches/xi-series](../experiments/studies/branches/xi-series/README.md)'
+             ', data in its `results.json`. "Half steps": values half a follow step beyond the last state on a '
+             'branch.\n',
+             '![branch ends against xi](../experiments/studies/branches/xi-series/xi-series.png)\n',
+             '| xi | cells per side | protruding branch ends, lambda (sigma) | with half steps | flat-start branch '
+             'ends, lambda (sigma) | with half steps | energy crossing |',
+             '|---|---|---|---|---|---|---|']
+    for row in data['series']:
+        crossing = (f"lambda {bracket(row['crossing_bracket_lambda'])}, sigma_c {row['sigma_c']:g}"
+                    + (f" +- {row['sigma_c_uncertainty']:g}" if row.get('sigma_c_uncertainty') else '')
+                    if row.get('sigma_c') is not None else
+                    f"lambda in {bracket(row['crossing_bracket_lambda'])}" if row.get('crossing_bracket_lambda') else
+                    'none where both branches hold')
+        lines.append(f"| {row['xi']:g} | {row['cells_per_side']} | {bracket(row['protruding_ends_lambda'])} "
+                     f"({bracket(row['protruding_ends'])}) | {bracket(row.get('protruding_ends_refined_lambda'))} | "
+                     f"{bracket(row['flat_ends_lambda'])} ({bracket(row['flat_ends'])}) | "
+                     f"{bracket(row.get('flat_ends_refined_lambda'))} | {crossing} |")
+    if sharp:
+        lines.append(f"| sharp interface ({'one branch' if sharp.get('single_branch') else 'two branches'}, "
+                     '[sharp_interface](../experiments/studies/sharp_interface/README.md)) | | waist at lambda '
+                     f"{sharp['waist_lambda']:.2f}, vertical boundary at {sharp['vertical_boundary_lambda']:.2f} | | | | |")
+    lines.append('')
+    rows = data['series']
+    flat = {tuple(r.get('flat_ends_refined_lambda') or r['flat_ends_lambda']) for r in rows}
+    ext = data.get('extrapolation', {}).get('protruding_ends_lambda', {})
+    lines += [f"- The protruding branch ends lower at the smaller xi: {', '.join(bracket(r.get('protruding_ends_refined_lambda') or r['protruding_ends_lambda']) + ' at ' + format(r['xi'], 'g') for r in rows)} (with the half steps), not monotonically at this resolution. "
+              + ('The flat-start branch ends in the same bracket at every xi, ' + bracket(next(iter(flat))) + ', so the range where both branches exist does not shrink between xi = 0.03 and 0.015.'
+                 if len(flat) == 1 else 'The flat-start branch ends move with xi.'),
+              '- The state followed down is the lower one at every common lambda at xi = 0.02 and 0.015: no energy '
+              'crossing where both branches hold. At 0.015 the difference goes to zero towards the end of the '
+              'protruding branch; long relaxations there (lambda 19.125 and 19.5, plateau 1e-5) leave the down-side '
+              'state lower by about 0.02 with the protrusions within 0.02 of each other, so the threshold is below '
+              '19.125, or in [19.125, 19.5] if the two states merge: below the 0.03 value in either case.',
+              '- xi -> 0: only the branch ends can be extrapolated, and only roughly: a straight line in xi through the '
+              f"protruding ends allows lambda(0) in {bracket(ext.get('linear_in_xi_intercept_range'))}; the study "
+              'estimates 19.0-19.5 +- 0.5. Against the sharp interface (one equilibrium at every lambda), the '
+              'protruding end moves from near its vertical-boundary value to near its waist, but the flat-start '
+              'branch keeps a state without a waist up to lambda 21.375 at every xi, where the sharp calculation has '
+              'a single waisted state. Either the bistability disappears only at much smaller xi, or it comes from '
+              'what the sharp calculation leaves out (the square cell, axisymmetry), or the flat-start states there '
+              'are not equilibria (at xi = 0.03 the flat state at sigma 700 still descended after 18 time units). '
+              'So the xi series gives no converged threshold either; the number quoted above holds for xi = 0.03.',
+              '']
+    if paper:
+        bud = paper['complete_bud_at_lambda']
+        where = []
+        for row in data['series']:
+            ends = row.get('protruding_ends_refined_lambda') or row['protruding_ends_lambda']
+            where.append(f"{'below' if bud < ends[0] else 'inside' if bud <= ends[1] else 'above'} the end of "
+                         f"the protruding branch at xi = {row['xi']:g} ({bracket(ends)})")
+        lines.append(f"The paper's statements (at xi = {paper.get('xi', 0.03):g}): its complete bud at sigma 630 is "
+                     f"lambda {bud:g}, {'; '.join(where)}, and "
+                     f"{'below' if sharp and bud < sharp['waist_lambda'] else 'above'} the sharp-interface waist. No "
+                     'state of any follow here is a complete bud (neck ratio below 0.4) at that lambda, nor of the sharp '
+                     f"interface, which needs lambda {sharp.get('neck_ratio_0.4_lambda', float('nan')):.1f} for it. Its "
+                     f"no bud at sigma 540 (lambda {paper['no_bud_at_lambda']:g}) agrees with all of them.\n")
+    return lines
+
+
+def sharpening_section(data):
+    """The energy adaptation adds while phi sharpens, per level, with and without Refine broad profiles."""
+    if not data:
+        return []
+    lines = ['The jumps during the sharpening come from refining the mesh while the interface forms. '
+             '`Mesh/Refine broad profiles = true` refines the diffuse range of the initial state before the first '
+             'step instead ([experiments/studies/adaptation_sharpening]'
+             '(../experiments/studies/adaptation_sharpening/README.md), sigma = 1000 to t = 0.1):\n',
+             '| level | Refine broad profiles | jumps for t <= 0.05 | largest jump | cells at t = 0.1 |', '|---|---|---|---|---|']
+    for r in data['runs']:
+        lines.append(f"| {r['level']} | {'true' if r['refine_broad_profiles'] else 'false'} | "
+                     f"{r['jump_until_0.05']:+.4f} | {r['largest_jump']:.4f} | {r['final_cells']} |")
+    by = {(r['level'], r['refine_broad_profiles']): r for r in data['runs']}
+    ratios = [by[(l, False)]['jump_until_0.05'] / by[(l, True)]['jump_until_0.05'] for l in (1, 2, 3)
+              if (l, False) in by and (l, True) in by and by[(l, True)]['jump_until_0.05'] > 0]
+    cells = [by[(l, True)]['final_cells'] / by[(l, False)]['final_cells'] for l in (1, 2, 3)
+             if (l, False) in by and (l, True) in by]
+    if ratios and cells:
+        lines.append(f'\nWith the option the sharpening jumps are {min(ratios):.0f} to {max(ratios):.0f} times smaller, '
+                     'but they do not shrink with h: they are coarsenings of the pre-refined region, and each coarsening '
+                     'beside a refined neighbour leaves a hanging vertex on the chord of the coarse edge, a dent of '
+                     f'bending energy. It keeps {min(cells):.1f} to {max(cells):.1f} times the cells at t = 0.1, so it is '
+                     'off by default; the follows of this page were run without it.\n')
+    return lines
+
+
+def write_data(results, summary, quoted, path, xi_series=None):
     """docs/data/branches.json: the crossings and turning points per level and the number to quote."""
     crossings = []
     for directory, level, label, colour, branches, cross in results:
@@ -678,6 +781,16 @@ def write_data(results, summary, quoted, path):
                           'difference': [[v, round(d, 4)] for v, d in s_['difference']],
                           'adaptation': {n: adaptation_energy(b['follows'][0]) for n, b in branches.items()},
                           'results': f'results/studies/{directory}'})
+    for row in (xi_series or {}).get('series', []):
+        if row['xi'] == 0.03:
+            continue  # the level-2 row above
+        crossings.append({'setup': '7.3', 'level': row['level'], 'interface_cells_per_xi': row['interface_cells_per_xi'],
+                          'cells_per_side': row['cells_per_side'], 'xi': row['xi'], 'sigma_c': row.get('sigma_c'),
+                          'sigma_c_kind': 'long relaxations' if row.get('sigma_c') is not None else None,
+                          'crossing_bracket': row.get('crossing_bracket_sigma'),
+                          'protruding_ends': row['protruding_ends'], 'flat_ends': row['flat_ends'],
+                          'protruding_ends_lambda': row['protruding_ends_lambda'],
+                          'flat_ends_lambda': row['flat_ends_lambda'], 'results': XI_RESULTS})
     data = {'page': 'docs/branches.md', 'plateau': {'rate': 1e-3, 'time': 0.3, 'max_time': 3},
             'classify': CLASSIFY, 'crossings': crossings, 'quote': quoted}
     os.makedirs(os.path.dirname(path), exist_ok=True)
@@ -855,10 +968,13 @@ def main(argv=None):
     quote_lines, quoted = quote(summary, results)
     lines += quote_lines
     lines += long_relaxation_section(read_json(LONG_RESULTS))
+    xi_series = read_json(XI_RESULTS)
+    lines += xi_series_section(xi_series)
     lines += adaptation_section(results)
+    lines += sharpening_section(read_json(SHARPENING_RESULTS))
     for directory, level, label, colour, branches, cross in results:
         lines += mesh_section(directory, level, label, branches, cross, fence='sh' if level == 1 else 'text')
-    write_data(results, summary, quoted, os.path.join(docs, DATA))
+    write_data(results, summary, quoted, os.path.join(docs, DATA), xi_series)
     os.makedirs(docs, exist_ok=True)
     with open(os.path.join(docs, 'branches.md'), 'w') as f:
         f.write('\n'.join(lines) + '\n')
