@@ -82,6 +82,36 @@ TEST(Adaptivity, InterfaceIndicatorRefinesSharpNotBroadProfiles)
   std::cout << coarsen_broad << " refined cells flagged for coarsening\n";
 }
 
+namespace
+{
+  /// A 16 x 16 patch refined once, bent by two cosine modes of amplitude 0.02 (slopes below 0.13,
+  /// normal curvatures up to 1.6), phi = -1; the centre vertex (vertex 3 of child 0) of the family
+  /// whose parent is centred at (6.5, 4.5) / 16 moved by `offset` times the parent's size 1/16
+  /// along the coordinate axis `component`.
+  void curved_patch_with_moved_vertex(Testing::FixedSurface &setup, const unsigned int component, const double offset)
+  {
+    setup.tria.refine_global(1);
+    setup.surface.setup();
+    set_cosine_modes(setup.surface, {{0.02, 1, 1, 0}, {0.02, 1, -1, 0}});
+    InitialPhaseOptions uniform;
+    uniform.type          = "uniform";
+    uniform.uniform_value = -1;
+    setup.set_phase(uniform);
+    Vector displaced = setup.surface.vector_space().make_owned();
+    displaced        = setup.surface.displacement();
+    for (const auto &cell : setup.surface.vector_space().dof_handler().active_cell_iterators())
+      if (cell->parent()->center().distance(dealii::Point<3>(6.5 / 16, 4.5 / 16, 0)) < 1e-9 &&
+          cell == cell->parent()->child(0))
+        {
+          const auto dof  = cell->vertex_dof_index(3, component);
+          displaced[dof] = displaced[dof] + offset / 16;
+        }
+    displaced.compress(dealii::VectorOperation::insert);
+    setup.surface.set_displacement(displaced);
+    setup.update_geometry();
+  }
+} // namespace
+
 // Coarsening drops the inner vertices of a family of four cells; refining again would put them
 // back at the Hermite midpoints of the parent (Smooth new vertices). Where the surface is smooth
 // they lie there already up to O(h^4), and every family the indicators allow is coarsened; a
@@ -92,29 +122,7 @@ TEST(Adaptivity, CoarseningKeepsFamiliesTheCoarseMeshCannotCarry)
 {
   Testing::FixedSurface setup(16);
   const unsigned int    base = setup.tria.n_global_levels() - 1; // the level of the 16 x 16 cells
-  setup.tria.refine_global(1);
-  setup.surface.setup();
-  set_cosine_modes(setup.surface, {{0.02, 1, 1, 0}, {0.02, 1, -1, 0}});
-  InitialPhaseOptions uniform;
-  uniform.type          = "uniform";
-  uniform.uniform_value = -1;
-  setup.set_phase(uniform);
-  setup.update_geometry();
-
-  // Raise the centre vertex (vertex 3 of child 0) of the family whose parent is centred at (6.5, 4.5) / 16.
-  const double parent_size = 1.0 / 16;
-  Vector       displaced   = setup.surface.vector_space().make_owned();
-  displaced                = setup.surface.displacement();
-  for (const auto &cell : setup.surface.vector_space().dof_handler().active_cell_iterators())
-    if (cell->parent()->center().distance(dealii::Point<3>(6.5 / 16, 4.5 / 16, 0)) < 1e-9 &&
-        cell == cell->parent()->child(0))
-      {
-        const auto dof  = cell->vertex_dof_index(3, 2);
-        displaced[dof] = displaced[dof] + 0.01 * parent_size;
-      }
-  displaced.compress(dealii::VectorOperation::insert);
-  setup.surface.set_displacement(displaced);
-  setup.update_geometry();
+  curved_patch_with_moved_vertex(setup, 2, 0.01);                  // raised along z
 
   AdaptivityOptions options;
   options.max_level = 1;
@@ -136,25 +144,7 @@ TEST(Adaptivity, CoarseningIgnoresTangentialOffsets)
 {
   Testing::FixedSurface setup(16);
   const unsigned int    base = setup.tria.n_global_levels() - 1;
-  setup.tria.refine_global(1);
-  setup.surface.setup();
-  set_cosine_modes(setup.surface, {{0.02, 1, 1, 0}, {0.02, 1, -1, 0}});
-  InitialPhaseOptions uniform;
-  uniform.type          = "uniform";
-  uniform.uniform_value = -1;
-  setup.set_phase(uniform);
-  Vector displaced = setup.surface.vector_space().make_owned();
-  displaced        = setup.surface.displacement();
-  for (const auto &cell : setup.surface.vector_space().dof_handler().active_cell_iterators())
-    if (cell->parent()->center().distance(dealii::Point<3>(6.5 / 16, 4.5 / 16, 0)) < 1e-9 &&
-        cell == cell->parent()->child(0))
-      {
-        const auto dof  = cell->vertex_dof_index(3, 0);
-        displaced[dof] = displaced[dof] + 0.01 / 16;
-      }
-  displaced.compress(dealii::VectorOperation::insert);
-  setup.surface.set_displacement(displaced);
-  setup.update_geometry();
+  curved_patch_with_moved_vertex(setup, 0, 0.01); // moved along x
 
   AdaptivityOptions options;
   options.max_level            = 1;

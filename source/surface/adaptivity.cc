@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 namespace Membrane
 {
@@ -42,10 +41,10 @@ namespace Membrane
                       "Cells are coarsened (where the indicators allow it) only where that drops no more than this "
                       "interpolation error of the surface: the inner vertices of the four cells lie within this "
                       "fraction of the parent cell's size, along their normals, from where refining the parent again "
-                      "would place them (Smooth new vertices). Coarsening changes the bending energy at second order in this error "
-                      "(about kappa times its square per parent cell); without the bound the coarsenings of a "
-                      "budding run raise the energy by a few percent. 1: no bound (every cell the indicators allow "
-                      "is coarsened); 0: never coarsen.");
+                      "would place them (Smooth new vertices). Coarsening changes the bending energy at second order "
+                      "in this error (about kappa times its square per parent cell); without the bound the coarsenings "
+                      "of a budding run raise the energy by a few percent. 1: no bound (every cell the indicators "
+                      "allow is coarsened); 0: never coarsen.");
     prm.declare_entry("Refine broad profiles", "false", Patterns::Bool(),
                       "Before the first step, refine the cells where the initial phi lies in the diffuse range "
                       "(|phi0| < Interface phi at a vertex) to the interface target, with the initial state set from "
@@ -243,7 +242,6 @@ namespace Membrane
           return;
         }
       const LocalValues normals(geometry.normal);
-      std::vector<typename Triangulation::cell_iterator> keep;
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned() && cell->coarsen_flag_set() && cell->level() > 0 && cell->parent()->child(0) == cell)
           {
@@ -253,12 +251,10 @@ namespace Membrane
               family = family && parent->child(c)->is_active() && parent->child(c)->is_locally_owned() &&
                        parent->child(c)->coarsen_flag_set();
             if (!family || coarsening_error(surface, parent, normals) > tolerance)
-              keep.push_back(parent);
+              for (unsigned int c = 0; c < parent->n_children(); ++c)
+                if (parent->child(c)->is_active())
+                  parent->child(c)->clear_coarsen_flag();
           }
-      for (const auto &parent : keep)
-        for (unsigned int c = 0; c < parent->n_children(); ++c)
-          if (parent->child(c)->is_active())
-            parent->child(c)->clear_coarsen_flag();
     }
   } // namespace
 
