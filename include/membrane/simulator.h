@@ -192,6 +192,13 @@ namespace Membrane
     bool         adaptation_due() const;
     /// false if no cell was flagged.
     bool         adapt_mesh();
+    /// Measure carried energy: take the next step (of length `tau`) on the current mesh as a trial,
+    /// keep its energy for the comparison after the first step on the new mesh, and restore the
+    /// state, as after a rejected trial.
+    void         step_old_mesh(double tau);
+    /// After an accepted step of length `tau`: add F - twin_energy to adaptation_energy_carried
+    /// if it is the step that follows an adaptation with the tau of its twin.
+    void         compare_with_old_mesh(double tau);
     /// Refine the initial mesh where the initial state asks for it (up to the maximum
     /// level), setting the initial state anew on each mesh.
     void         adapt_initial_mesh();
@@ -272,6 +279,13 @@ namespace Membrane
     unsigned int base_level = 0, adaptations = 0;
     double       plateau_since = -1; ///< time since which the energy rate is below Equilibrium rate (-1: not)
     double       adaptation_energy_jump = 0;
+    /// Measure carried energy: the sum over adaptations of F after the first step on the new mesh
+    /// minus F after the same step on the old one, the adaptations it covers, and the pending
+    /// comparison of the last adaptation (tau and F of its step on the old mesh).
+    double       adaptation_energy_carried = 0;
+    unsigned int carried_measured          = 0;
+    double       twin_tau = 0, twin_energy = 0;
+    bool         twin_pending = false;
     bool         memory_warning_given   = false; ///< refinement_fits() warns once per run
     bool   grid_move_skipped = false; ///< in the current trial step
 

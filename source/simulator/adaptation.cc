@@ -105,6 +105,8 @@ namespace Membrane
       }
     if (n_refine + n_coarsen == 0)
       return false;
+    if (parameters.adaptivity.measure_carried_energy && !end_time_reached())
+      step_old_mesh(std::min(step_control.tau(), parameters.end_time - time));
     const unsigned int cells_before  = triangulation.n_global_active_cells();
     const EnergyTerms  terms_before  = energy;
     const double       energy_before = energy.total();
@@ -170,6 +172,34 @@ namespace Membrane
             << energy.gradient + energy.well - terms_before.gradient - terms_before.well << "), mass shift " << shift
             << '\n';
     return true;
+  }
+
+  void Simulator::step_old_mesh(const double tau)
+  {
+    // The trial leaves the refinement and coarsening flags alone; what else it sets (the step's
+    // increments, error estimate and solver counts) the next trial sets again.
+    const State  before          = save_state();
+    const double pressure_before = volume_pressure, quality_before = cell_quality;
+    twin_pending                 = try_step(tau).empty(); // a rejected trial has restored the state itself
+    twin_tau                     = tau;
+    twin_energy                  = energy.total();
+    restore_state(before);
+    volume_pressure = pressure_before;
+    cell_quality    = quality_before;
+  }
+
+  void Simulator::compare_with_old_mesh(const double tau)
+  {
+    if (!twin_pending)
+      return;
+    twin_pending = false;
+    if (tau != twin_tau) // the first trial on the new mesh was rejected: not the same step
+      return;
+    const double carried = energy.total() - twin_energy;
+    adaptation_energy_carried += carried;
+    ++carried_measured;
+    if (!options.quiet)
+      pcout << "Adaptation at t = " << time - tau << ": energy carried after one step " << carried << '\n';
   }
 
   void Simulator::adapt_initial_mesh()

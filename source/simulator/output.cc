@@ -75,6 +75,11 @@ namespace Membrane
     stats.set("refinement_level", finest_level());
     stats.set("adaptations", adaptations);
     stats.set("adaptation_energy_jump", adaptation_energy_jump);
+    if (parameters.adaptivity.measure_carried_energy)
+      {
+        stats.set("adaptation_energy_carried", adaptation_energy_carried);
+        stats.set("carried_measured", carried_measured);
+      }
     stats.set("wall_seconds", earlier_wall_seconds + wall.wall_time());
     if (topology->encloses_volume())
       record_volume_statistics();
@@ -184,6 +189,11 @@ namespace Membrane
                      {"cells_per_side", parameters.cells_per_side},
                      {"wall_seconds", earlier_wall_seconds + wall.wall_time()},
                      {"adaptation_energy_jump", adaptation_energy_jump},
+                     {"adaptation_energy_carried", adaptation_energy_carried},
+                     {"carried_measured", carried_measured},
+                     {"twin_pending", twin_pending ? 1.0 : 0.0},
+                     {"twin_tau", twin_tau},
+                     {"twin_energy", twin_energy},
                      {"initial_volume", initial_volume},
                      {"volume_pressure", volume_pressure},
                      {"pressure_work", pressure_work},
@@ -258,6 +268,9 @@ namespace Membrane
                           "domain_area", "domain_protrusion", "bud_direction", "min_corner_sine", "area_error", "cells",
                           "adaptations", "adaptation_energy_jump"})
       summary.add(c, stats.last(c));
+    if (parameters.adaptivity.measure_carried_energy)
+      for (const char *c : {"adaptation_energy_carried", "carried_measured"})
+        summary.add(c, stats.last(c));
     if (topology->encloses_volume())
       for (const char *c : {"volume", "volume_drift", "reduced_volume", "pressure", "pressure_work", "laplace_pressure"})
         summary.add(c, stats.last(c));

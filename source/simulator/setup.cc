@@ -151,6 +151,14 @@ namespace Membrane
         adaptations            = static_cast<unsigned int>(scalars.at("adaptations"));
         adaptation_energy_jump = scalars.at("adaptation_energy_jump");
       }
+    if (scalars.count("adaptation_energy_carried"))
+      {
+        adaptation_energy_carried = scalars.at("adaptation_energy_carried");
+        carried_measured          = static_cast<unsigned int>(scalars.at("carried_measured"));
+        twin_pending              = scalars.at("twin_pending") > 0;
+        twin_tau                  = scalars.at("twin_tau");
+        twin_energy               = scalars.at("twin_energy");
+      }
     stats              = Statistics::from_text(statistics_text);
     cell_quality       = min_corner_sine(surface, geometry.normal);
     output->resume(time, parameters.resume_from);

@@ -114,6 +114,7 @@ namespace Membrane
     grid_control_skipped += grid_move_skipped;
     irreducible_error_steps += local_error_irreducible;
     pressure_work += step_pressure_work;
+    compare_with_old_mesh(trial);
     record_statistics(trial);
     const double change =
       std::abs(energy.total() - energy_before - step_pressure_work) / std::max(std::abs(energy_before), 1e-300);

@@ -54,6 +54,15 @@ namespace Membrane
                       "0.2-0.4 (7.3 at sigma = 1000 to t = 0.05: +0.51, +0.66, +0.97 with 1, 2, 3 levels; with it "
                       "+0.05, +0.22, +0.21, all in coarsenings), at the price of 1.2-1.5 times the cells (cells of the "
                       "curved bump, once refined, stay refined). For convergence studies.");
+    prm.declare_entry("Measure carried energy", "false", Patterns::Bool(),
+                      "Before each mesh change, also take the next step on the old mesh (a trial that is then "
+                      "discarded) and compare its energy with that of the same step on the new mesh: the statistic "
+                      "adaptation_energy_carried sums these differences, the energy an adaptation leaves in the state "
+                      "once the step has relaxed the mesh-scale modes. adaptation_energy_jump, F right after the "
+                      "transfer minus F before, is mostly the bending energy of the new vertices' small offsets from "
+                      "the smooth surface, modes of wavelength h that the next implicit step removes (their relaxation "
+                      "time h^4 / (Shape mobility kappa) is far below tau). Costs one step per adaptation. For "
+                      "convergence studies.");
     prm.declare_entry("Smooth new vertices", "true", Patterns::Bool(),
                       "Place the vertices created by refinement on a smooth surface through the old vertices and "
                       "their normals (cubic Hermite edges) instead of on the bilinear surface, whose kinks along the "
@@ -72,6 +81,7 @@ namespace Membrane
     options.refine_broad_profiles  = prm.get_bool("Refine broad profiles");
     options.coarsening_tolerance   = prm.get_double("Coarsening tolerance");
     options.memory_limit           = prm.get_double("Refinement memory limit") * 1e9;
+    options.measure_carried_energy = prm.get_bool("Measure carried energy");
     return options;
   }
 } // namespace Membrane

@@ -38,6 +38,7 @@ namespace Membrane
     bool         refine_broad_profiles  = false; ///< refine |phi0| < interface_phi before the first step, keep it fine
     double       coarsening_tolerance   = 3e-3; ///< largest surface interpolation error (per parent size) a coarsening may drop
     double       memory_limit           = 0;    ///< bytes of all ranks after a refinement (0: 80 % of available)
+    bool         measure_carried_energy = false; ///< also step the old mesh, for adaptation_energy_carried
 
     bool enabled() const { return max_level > 0; }
   };
