@@ -170,6 +170,9 @@ namespace Membrane
         changed_on_resume.push_back(change);
     if (!changed_on_resume.empty())
       {
+        // A pending twin step (Measure carried energy) ran under the checkpoint's parameters: with
+        // another line tension its energy is not comparable with the next step's.
+        twin_pending = false;
         pcout << "Resumed with changed parameters:";
         for (const auto &change : changed_on_resume)
           pcout << "\n  " << change;
