@@ -61,7 +61,7 @@ namespace Membrane
                       "once the step has relaxed the mesh-scale modes. adaptation_energy_jump, F right after the "
                       "transfer minus F before, is mostly the bending energy of the new vertices' small offsets from "
                       "the smooth surface, modes of wavelength h that the next implicit step removes (their relaxation "
-                      "time h^4 / (Shape mobility kappa) is far below tau). Costs one step per adaptation. For "
+                      "time (h / pi)^4 / (Shape mobility kappa) is far below tau). Costs one step per adaptation. For "
                       "convergence studies.");
     prm.declare_entry("Smooth new vertices", "true", Patterns::Bool(),
                       "Place the vertices created by refinement on a smooth surface through the old vertices and "

@@ -81,6 +81,18 @@ def summarize(column, energy):
     return dict(s, final_energy=float(energy))
 
 
+REFERENCE = "results/studies/branches-gb"  # the follows of docs/branches.md (code 06d7f30), when present
+
+
+def reference_energies(level, direction):
+    """sigma -> energy of the states of docs/branches.md's main follow of the same level and direction."""
+    path = f"{REFERENCE}/level{level}/{direction}/branch.json"
+    if not os.path.exists(path):
+        return {}
+    with open(path) as f:
+        return {p["value"]: p["energy"] for p in json.load(f)["points"]}
+
+
 follows = []
 for level in (1, 2, 3):
     for direction in ("down", "up"):
@@ -88,13 +100,14 @@ for level in (1, 2, 3):
             branch = json.load(f)
         points = branch["points"]
         column = load_statistics(os.path.dirname(points[-1]["state"]))
-        states = []
+        states, reference = [], reference_energies(level, direction)
         for p in points:
             end = int(np.searchsorted(column["time"], p["time"] + 1e-9))
             s = split(column, end)
             states.append({"sigma": p["value"], "time": p["time"], "energy": p["energy"], "class": p["class"],
                            "at_plateau": p["at_plateau"], "jump_after_sharpening": s["after"]["jump"],
-                           "carried_after_sharpening": s["after"]["carried"]})
+                           "carried_after_sharpening": s["after"]["carried"],
+                           "energy_in_docs": reference.get(p["value"])})
         with open(os.path.join(os.path.dirname(points[-1]["state"]), "summary.json")) as f:
             version = json.load(f).get("code_version")
         follows.append(dict(split(column), level=level, direction=direction, states=states, code_version=version,
@@ -121,6 +134,11 @@ for r in follows:
     print(f"| {r['level']} | {r['direction']} | {r['adaptations']} ({r['measured']}) | {r['sharpening']['jump']:+.4f} | "
           f"{r['sharpening']['carried']:+.4f} | {r['after']['jump']:+.4f} | {r['after']['carried']:+.5f} | "
           f"{r['after']['largest_carried']:.1e} | {100 * share:.4f} % |")
+differences = [abs(s["energy"] - s["energy_in_docs"]) for r in follows for s in r["states"]
+               if s["energy_in_docs"] is not None]
+if differences:
+    print(f"\nStates against docs/branches.md (same sigma, same follow): largest energy difference "
+          f"{max(differences):.4f} over {len(differences)} states")
 c = result["curvature_0.15"]
 print(f"\nCurvature resolution 0.15, level 2, sigma 1000 to t = {c['time']:g}: {c['adaptations']} adaptations "
       f"({c['measured']} compared), jumps {c['sharpening']['jump']:+.4f} / {c['after']['jump']:+.4f}, carried "
