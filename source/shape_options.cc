@@ -25,6 +25,14 @@ namespace Membrane
                       "second order, which s = 1 adds implicitly (an O(tau^2) change of the step). Without it the "
                       "explicit force limits tau to about h^2 / (L_X sigma) at a sharp interface. 0: explicit "
                       "(the reference scheme).");
+    prm.declare_entry("Line force", "potential", Patterns::Selection("potential|stress"),
+                      "How the shape step takes the force of the line energy. potential: the reference scheme, "
+                      "H G + sigma xi^2 b^ij d_i phi d_j phi in the normal row and Y grad phi in the tangential law "
+                      "(MODEL.md section 4), equal to the variation of F only in the continuum. stress: the exact "
+                      "derivative of the discrete line energy with respect to the vertex positions (phi carried by "
+                      "the vertices), f = -M_L^-1 dF_l/dX with the vertex areas M_L, in both rows; the tangential "
+                      "law keeps Y grad phi of the other terms only. With it a shape step lowers the discrete "
+                      "energy to first order in tau, also near an equilibrium (docs/model.md).");
     prm.declare_entry("Curvature mass", "consistent", Patterns::Selection("consistent|lumped"),
                       "Mass matrix of the mean-curvature equation of the shape step. consistent: the reference "
                       "discretization, seven coupled fields per vertex (W, gamma, H, and the two tangential parts "
@@ -66,6 +74,7 @@ namespace Membrane
     prm.enter_subsection("Shape");
     options.pressure_stabilization = prm.get_double("Pressure stabilization");
     options.line_stiffness         = prm.get_double("Line stiffness");
+    options.line_force = prm.get("Line force") == "stress" ? LineForce::stress : LineForce::potential;
     options.curvature_mass = prm.get("Curvature mass") == "lumped" ? CurvatureMass::lumped : CurvatureMass::consistent;
     options.correct_area               = prm.get_bool("Correct area");
     options.area_corrections           = prm.get_integer("Area projections");

@@ -1,4 +1,5 @@
 #include <membrane/physics/free_energy.h>
+#include <membrane/physics/stress_force.h>
 #include <membrane/shape_solver.h>
 #include <membrane/solvers/cell_assembly.h>
 #include <membrane/solvers/vector_access.h>
@@ -29,6 +30,7 @@ namespace Membrane
     {
       Tensor<1, spacedim> nu, grad_phi, tangent[2], unit_tangent[2];
       Tensor<1, spacedim> noise; ///< tau L_X eta: the thermal force density (0 at k_BT = 0)
+      Tensor<1, spacedim> stress_force; ///< f of the stress terms (Line force = stress; else 0)
       double              H = 0, Y = 0;
       NormalStiffness     stiffness; ///< of the energy terms (physics/free_energy.h)
       ShapeForce          force;
@@ -71,6 +73,7 @@ namespace Membrane
     std::vector<double>              phi_q(n_q), H_q(n_q), K_q(n_q), Y_q(n_q);
     std::vector<Tensor<1, spacedim>> grad_phi_q(n_q), nu_q(n_q);
     std::vector<Tensor<2, spacedim>> grad_nu_q(n_q);
+    std::vector<Tensor<1, spacedim>> stress_force_q(n_q);
     std::vector<PointData>           data(n_q);
     // Unit normals and tangent frames at the cell's vertices (closed surfaces and the
     // lumped curvature mass, see below).
@@ -99,6 +102,10 @@ namespace Membrane
     const double delta = options.pressure_stabilization;
     // Weight of the linearized gradient energy in the tangential law (see below).
     const double line_stiffness = options.line_stiffness * tauL * terms.tangential_stiffness_weight();
+    // Line force = stress: the stress terms' force f = -M_L^-1 dF/dX replaces their potential
+    // form in the normal row and their part of Y grad phi in the tangential law.
+    const bool   stress_form = options.line_force == LineForce::stress;
+    const Vector stress      = stress_form ? stress_force(surface, phi, terms) : Vector();
 
     // The tangential law is tested, and the tangential part B~ of the curvature vector
     // expanded, along two tangent directions per vertex. On the periodic patch these are
@@ -127,6 +134,8 @@ namespace Membrane
           scalar_values.get_function_values(potential, Y_q);
           vector_values[all_components].get_function_values(geometry.normal, nu_q);
           vector_values[all_components].get_function_gradients(geometry.normal, grad_nu_q);
+          if (stress_form)
+            vector_values[all_components].get_function_values(stress, stress_force_q);
           if (!periodic || lumped)
             {
               vectors.cell(cell)->get_dof_values(geometry.normal, normal_dofs);
@@ -164,7 +173,15 @@ namespace Membrane
               point.nu       = nu_q[q];
               point.grad_nu  = grad_nu_q[q];
               d.stiffness    = terms.normal_stiffness(point);
-              d.force        = terms.shape_force(point);
+              d.force        = terms.shape_force(point, stress_form);
+              if (stress_form)
+                {
+                  // The normal row takes f . nu; the tangential law Y grad phi of the other
+                  // terms (their explicit potentials) plus f.
+                  d.force.source += stress_force_q[q] * nu_q[q];
+                  d.Y            = terms.potential(point);
+                  d.stress_force = stress_force_q[q];
+                }
               // Thermal force, times tau L_X: standard deviation sqrt(2 k_BT tau L_X / w_q) per component.
               if (noise.active())
                 {
@@ -262,15 +279,17 @@ namespace Membrane
                     }
 
                   double b = 0;
-                  if (tangential_row) // + tau L_X (Y grad phi + eta, psi a_k)
+                  if (tangential_row) // + tau L_X (Y grad phi + f + eta, psi a_k)
                     b = tauL * d.Y * (d.grad_phi * test_tangent(i, tangent_k, d)) * psi +
+                        tauL * (d.stress_force * test_tangent(i, tangent_k, d)) * psi +
                         (d.noise * test_tangent(i, tangent_k, d)) * psi;
                   else if (reduced && ci == 0)
                     b = -(nu_i * grad_psi); // -(nu_i . grad_s X^m, grad_s psi)
                   else if (ci < spacedim)
                     b = -grad_psi[ci]; // -(grad_s X^m, grad_s psi_vec)
                   else if (ci == pressure_component) // + a_target - a^m: add_area_defect()
-                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi) + delta * (d.noise * grad_psi);
+                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi) + delta * tauL * (d.stress_force * grad_psi) +
+                        delta * (d.noise * grad_psi);
                   else // normal row, + tau L_X (eta, psi nu)
                     b = tauL * (d.force.flux * grad_psi + d.force.source * psi) + (d.noise * d.nu) * psi;
                   local_rhs(i) += b;

@@ -17,11 +17,19 @@ namespace Membrane
     lumped_full  ///< seven fields of the lumped scheme (verification of `lumped`)
   };
 
+  /// How the shape step takes the force of the terms that have a stress (the line energy).
+  enum class LineForce
+  {
+    potential, ///< normal row H G + sigma xi^2 b(grad phi, grad phi), tangential law Y grad phi (reference)
+    stress     ///< the exact derivative of the discrete energy (physics/stress_force.h)
+  };
+
   struct ShapeOptions
   {
     CurvatureMass curvature_mass  = CurvatureMass::consistent;
     double pressure_stabilization = 0.5; ///< delta (0: none)
     double line_stiffness         = 0;   ///< weight of the implicit line-energy stiffness in the tangential law (0: explicit)
+    LineForce line_force          = LineForce::potential;
     bool   correct_area           = true;  ///< feed back the defect of the vertex areas
     unsigned int area_corrections = 1;     ///< projections per step onto the area constraint
     double area_tolerance         = 1e-12; ///< no projection below this relative defect

@@ -50,12 +50,21 @@ namespace Membrane
     return stiffness;
   }
 
-  ShapeForce FreeEnergy::shape_force(const TermPoint &point) const
+  ShapeForce FreeEnergy::shape_force(const TermPoint &point, const bool without_stress_terms) const
   {
     ShapeForce force;
     for (const auto &term : terms)
-      term->add_shape_force(point, force);
+      if (!(without_stress_terms && term->has_stress()))
+        term->add_shape_force(point, force);
     return force;
+  }
+
+  dealii::Tensor<2, spacedim> FreeEnergy::stress(const TermPoint &point) const
+  {
+    dealii::Tensor<2, spacedim> T;
+    for (const auto &term : terms)
+      term->add_stress(point, T);
+    return T;
   }
 
   double FreeEnergy::tangential_stiffness_weight() const

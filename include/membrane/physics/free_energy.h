@@ -8,7 +8,10 @@
 //      the implicit stiffness on H~, -tau L_X kappa ((grad H~, grad psi) + m (H~, psi)),
 //      which the block preconditioner takes too (shape_preconditioner.cc), and
 //      the explicit force, + tau L_X ((flux, grad psi) + (source, psi));
-//  - the weight of its implicit stiffness in the tangential law (Shape/Line stiffness).
+//  - the weight of its implicit stiffness in the tangential law (Shape/Line stiffness);
+//  - for a term that does not depend on the curvature, its stress T (dF[V] = integral
+//    T : grad_s V ds), from which Shape/Line force = stress takes its whole shape force as
+//    the exact derivative of the discrete energy (physics/stress_force.h).
 // The tangential law's force Y grad phi is the chemical potential's, so a term that
 // depends on phi enters it through potential(). The local area constraint, the volume
 // term and the thermal noise are not energy terms of X and phi alone: they stay with the
@@ -67,6 +70,12 @@ namespace Membrane
     virtual void   add_shape_force(const TermPoint &, ShapeForce &) const {}
     /// Multiplies Shape/Line stiffness * tau L_X in the tangential law's implicit stiffness.
     virtual double tangential_stiffness_weight() const { return 0; }
+    /// Whether the term has a stress (add_stress); such a term's add_shape_force is the same
+    /// force in the potential form of the reference scheme.
+    virtual bool   has_stress() const { return false; }
+    /// Adds its stress T at (phi, grad_phi): dF[V] = integral T : grad_s V ds for a variation
+    /// V of X with phi carried by the material (T[c][e] multiplies d V_c / dx_e).
+    virtual void   add_stress(const TermPoint &, dealii::Tensor<2, spacedim> &) const {}
   };
 
   /// The terms of a material, in a fixed order (sums over them are reproducible).
@@ -81,7 +90,10 @@ namespace Membrane
     void            add_energy(const TermPoint &point, double ds, EnergyTerms &energy) const;
     double          potential(const TermPoint &point) const;
     NormalStiffness normal_stiffness(const TermPoint &point) const;
-    ShapeForce      shape_force(const TermPoint &point) const;
+    /// The normal row's force; without_stress_terms: only of the terms without a stress.
+    ShapeForce      shape_force(const TermPoint &point, bool without_stress_terms = false) const;
+    /// The sum of the terms' stresses (reads phi and grad_phi).
+    dealii::Tensor<2, spacedim> stress(const TermPoint &point) const;
     double          tangential_stiffness_weight() const;
 
   private:

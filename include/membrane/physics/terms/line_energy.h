@@ -19,6 +19,8 @@ namespace Membrane
     void   add_energy(const TermPoint &point, double ds, EnergyTerms &energy) const override;
     void   add_shape_force(const TermPoint &point, ShapeForce &force) const override;
     double tangential_stiffness_weight() const override { return sigma * xi2; }
+    bool   has_stress() const override { return true; }
+    void   add_stress(const TermPoint &point, dealii::Tensor<2, spacedim> &T) const override;
 
   private:
     const double sigma, xi, xi2;
