@@ -40,6 +40,8 @@ RUNS = {
     "stress-frozen": (NOGC, 0.03, STRESS + FROZEN, "the same with phi frozen"),
     "stress-stiff": (NOGC, 0.3, STRESS + STIFF, "stress form with the implicit line stiffness"),
     "potential-stiff": (NOGC, 0.3, STIFF, "potential form with the implicit line stiffness"),
+    "stress-stiff-proj3": (NOGC, 0.3, STRESS + STIFF + ["Shape/Area projections=3"],
+                           "stress form, line stiffness, three area projections per step"),
     "stress-stiff-tac": (NOGC, 0.3, STRESS + STIFF + TAC, "stress form, line stiffness, tangential area correction"),
     "gc-potential": (GC, 0.5, TOL, "with grid control, the reference scheme"),
     "gc-stress-stiff": (GC, 0.5, TOL + STRESS + STIFF, "with grid control, stress form and line stiffness"),
