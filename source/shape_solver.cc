@@ -30,7 +30,7 @@ namespace Membrane
     {
       Tensor<1, spacedim> nu, grad_phi, tangent[2], unit_tangent[2];
       Tensor<1, spacedim> noise; ///< tau L_X eta: the thermal force density (0 at k_BT = 0)
-      Tensor<1, spacedim> stress_force; ///< f of the stress terms (Line force = stress; else 0)
+      Tensor<1, spacedim> stress_force; ///< f of the stress terms (read only with Line force = stress)
       double              H = 0, Y = 0;
       NormalStiffness     stiffness; ///< of the energy terms (physics/free_energy.h)
       ShapeForce          force;
@@ -279,19 +279,23 @@ namespace Membrane
                     }
 
                   double b = 0;
-                  if (tangential_row) // + tau L_X (Y grad phi + f + eta, psi a_k)
+                  if (tangential_row) // + tau L_X (Y grad phi + eta, psi a_k)
                     b = tauL * d.Y * (d.grad_phi * test_tangent(i, tangent_k, d)) * psi +
-                        tauL * (d.stress_force * test_tangent(i, tangent_k, d)) * psi +
                         (d.noise * test_tangent(i, tangent_k, d)) * psi;
                   else if (reduced && ci == 0)
                     b = -(nu_i * grad_psi); // -(nu_i . grad_s X^m, grad_s psi)
                   else if (ci < spacedim)
                     b = -grad_psi[ci]; // -(grad_s X^m, grad_s psi_vec)
                   else if (ci == pressure_component) // + a_target - a^m: add_area_defect()
-                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi) + delta * tauL * (d.stress_force * grad_psi) +
-                        delta * (d.noise * grad_psi);
+                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi) + delta * (d.noise * grad_psi);
                   else // normal row, + tau L_X (eta, psi nu)
                     b = tauL * (d.force.flux * grad_psi + d.force.source * psi) + (d.noise * d.nu) * psi;
+                  // Line force = stress: + tau L_X (f, psi a_k) in the tangential law and its residual
+                  // + delta tau L_X (f, grad psi) in the area row (f . nu is in the normal row's source).
+                  if (stress_form && tangential_row)
+                    b += tauL * (d.stress_force * test_tangent(i, tangent_k, d)) * psi;
+                  else if (stress_form && ci == pressure_component)
+                    b += delta * tauL * (d.stress_force * grad_psi);
                   local_rhs(i) += b;
                 }
             }

@@ -32,6 +32,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <set>
 #include <vector>
@@ -46,26 +47,34 @@ namespace
     return 1 + 0.5 * x[0] + 0.3 * x[1] * x[2];
   }
 
-  class NormalMove : public dealii::Function<spacedim>
+  /// A move of the vertices, `size` times a vector field of the point (set_displacement
+  /// evaluates it at the reference vertices).
+  class Move : public dealii::Function<spacedim>
   {
   public:
-    NormalMove(const std::array<double, 3> &axes, const double size)
+    using Field = std::function<dealii::Tensor<1, spacedim>(const dealii::Point<spacedim> &)>;
+    Move(const double size, Field field)
       : dealii::Function<spacedim>(spacedim)
-      , axes(axes)
       , size(size)
+      , field(std::move(field))
     {}
-    double value(const dealii::Point<spacedim> &x, const unsigned int c) const override
-    {
+    double value(const dealii::Point<spacedim> &x, const unsigned int c) const override { return size * field(x)[c]; }
+
+  private:
+    const double size;
+    const Field  field;
+  };
+
+  /// The normal move f n of the ellipsoid with these semi-axes (n its unit normal at x).
+  Move::Field normal_move(const std::array<double, 3> &axes)
+  {
+    return [axes](const dealii::Point<spacedim> &x) {
       dealii::Tensor<1, spacedim> n;
       for (unsigned int d = 0; d < spacedim; ++d)
         n[d] = x[d] / (axes[d] * axes[d]);
-      return size * speed(x) * n[c] / n.norm();
-    }
-
-  private:
-    const std::array<double, 3> axes;
-    const double                size;
-  };
+      return speed(x) * n / n.norm();
+    };
+  }
 
   /// The reference ellipsoid with n cells per cube edge, and central differences along the
   /// normal move f n of a quantity of the surface.
@@ -93,7 +102,7 @@ namespace
       std::array<double, 2> values{};
       for (const int side : {0, 1})
         {
-          set_displacement(surface, NormalMove(semi_axes, side == 0 ? epsilon : -epsilon));
+          set_displacement(surface, Move(side == 0 ? epsilon : -epsilon, normal_move(semi_axes)));
           values[side] = quantity(static_cast<const Surface &>(surface));
         }
       return (values[0] - values[1]) / (2 * epsilon);
@@ -272,22 +281,11 @@ TEST(EnergyTerms, NormalForcesAreTheDerivativesOfTheirEnergies)
 
 namespace
 {
-  /// The divergence-free, periodic tangential shear (sin 2 pi y, 0, 0) times `size`.
-  class ShearMove : public dealii::Function<spacedim>
+  /// The divergence-free, periodic tangential shear (sin 2 pi y, 0, 0).
+  dealii::Tensor<1, spacedim> shear(const dealii::Point<spacedim> &x)
   {
-  public:
-    explicit ShearMove(const double size)
-      : dealii::Function<spacedim>(spacedim)
-      , size(size)
-    {}
-    double value(const dealii::Point<spacedim> &x, const unsigned int c) const override
-    {
-      return c == 0 ? size * std::sin(2 * M_PI * x[1]) : 0.0;
-    }
-
-  private:
-    const double size;
-  };
+    return dealii::Tensor<1, spacedim>({std::sin(2 * M_PI * x[1]), 0.0, 0.0});
+  }
 } // namespace
 
 // The tangential force of the line energy (the force Y grad phi of the tangential law, Y the
@@ -362,7 +360,7 @@ TEST(EnergyTerms, TangentialForceIsTheDerivativeOfTheLineEnergy)
             {
               dealii::Tensor<1, spacedim> V;
               for (unsigned int c = 0; c < spacedim; ++c)
-                V[c] = ShearMove(1.0).value(values.quadrature_point(q), c);
+                V[c] = shear(values.quadrature_point(q))[c];
               variation -= Y_q[q] * (grad_phi_q[q] * V) * values.JxW(q);
             }
         }
@@ -370,7 +368,7 @@ TEST(EnergyTerms, TangentialForceIsTheDerivativeOfTheLineEnergy)
       std::array<double, 2> energies{};
       for (const int side : {0, 1})
         {
-          set_displacement(surface, ShearMove(side == 0 ? epsilon : -epsilon));
+          set_displacement(surface, Move(side == 0 ? epsilon : -epsilon, shear));
           const EnergyTerms e = compute_energy(surface, compute_geometry(surface), phi, material);
           energies[side]      = e.gradient + e.well;
         }
@@ -387,23 +385,12 @@ TEST(EnergyTerms, TangentialForceIsTheDerivativeOfTheLineEnergy)
 
 namespace
 {
-  /// A smooth move with normal and tangential parts on the ellipsoid, times `size`.
-  class GeneralMove : public dealii::Function<spacedim>
+  /// A smooth move with normal and tangential parts on the ellipsoid.
+  dealii::Tensor<1, spacedim> general_move(const dealii::Point<spacedim> &x)
   {
-  public:
-    explicit GeneralMove(const double size)
-      : dealii::Function<spacedim>(spacedim)
-      , size(size)
-    {}
-    double value(const dealii::Point<spacedim> &x, const unsigned int c) const override
-    {
-      const std::array<double, 3> v{{0.3 * x[1] * x[2] + 0.2, -0.4 * x[0] + 0.1 * x[2] * x[2], 0.25 * x[0] * x[1]}};
-      return size * v[c];
-    }
-
-  private:
-    const double size;
-  };
+    return dealii::Tensor<1, spacedim>(
+      {0.3 * x[1] * x[2] + 0.2, -0.4 * x[0] + 0.1 * x[2] * x[2], 0.25 * x[0] * x[1]});
+  }
 } // namespace
 
 // Shape/Line force = stress takes the line energy's force as the derivative of the discrete line
@@ -440,21 +427,20 @@ TEST(EnergyTerms, StressForceIsTheExactDerivativeOfTheDiscreteLineEnergy)
       // -sum_j a_j f_j . V(x_j): V at the reference vertices, where set_displacement evaluates it.
       // (for_each_free_vertex visits a vertex once from each of its cells: count it once)
       double                                  variation = 0;
-      const GeneralMove                       move(1.0);
       std::set<dealii::types::global_dof_index> counted;
       for_each_free_vertex(vectors, [&](const auto &cell, const unsigned int v, const auto &dofs) {
         if (!counted.insert(dofs[0]).second)
           return;
         const double a = areas[scalars.cell(cell)->vertex_dof_index(v, 0)];
         for (unsigned int c = 0; c < spacedim; ++c)
-          variation -= a * f[dofs[c]] * move.value(cell->vertex(v), c);
+          variation -= a * f[dofs[c]] * general_move(cell->vertex(v))[c];
       });
 
       const double          epsilon = 1e-5;
       std::array<double, 2> energies{};
       for (const int side : {0, 1})
         {
-          set_displacement(surface, GeneralMove(side == 0 ? epsilon : -epsilon));
+          set_displacement(surface, Move(side == 0 ? epsilon : -epsilon, general_move));
           const EnergyTerms e = compute_energy(surface, compute_geometry(surface), phi, material);
           energies[side]      = e.gradient + e.well;
         }
