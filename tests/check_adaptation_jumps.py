@@ -15,6 +15,8 @@ import json
 import os
 import sys
 
+from checks import Checks  # tests/checks.py, next to this script
+
 parser = argparse.ArgumentParser()
 parser.add_argument("broad")
 parser.add_argument("plain")
@@ -29,13 +31,11 @@ def summary(directory):
 
 
 broad, plain = summary(args.broad), summary(args.plain)
-ok = True
+check = Checks()
 for name, run, condition, bound in (("broad profile refined first", broad, lambda j: j <= args.most, f"<= {args.most}"),
                                     ("refined as the interface sharpens", plain, lambda j: j >= args.least,
                                      f">= {args.least}")):
     jump = run["adaptation_energy_jump"]
-    good = condition(jump) and run["adaptations"] >= 1
-    print(f"{'ok     ' if good else 'FAILED '} {name}: {run['adaptations']} adaptations, energy jump {jump:.4g} "
-          f"(expected {bound})")
-    ok = ok and good
-sys.exit(0 if ok else 1)
+    check(condition(jump) and run["adaptations"] >= 1,
+          f"{name}: {run['adaptations']} adaptations, energy jump {jump:.4g} (expected {bound})")
+sys.exit(check.exit_code())

@@ -17,6 +17,7 @@ import sys
 import numpy as np
 
 from membrane_flow.run import load_statistics  # noqa: E402 (PYTHONPATH: the build's python/)
+from checks import Checks  # tests/checks.py, next to this script
 
 parser = argparse.ArgumentParser()
 parser.add_argument("measured")
@@ -25,15 +26,7 @@ parser.add_argument("--least-jump", type=float, default=0.5)
 args = parser.parse_args()
 
 m, p = load_statistics(args.measured), load_statistics(args.plain)
-ok = True
-
-
-def check(condition, message):
-    global ok
-    print(("ok      " if condition else "FAILED  ") + message)
-    ok = ok and bool(condition)
-
-
+check = Checks()
 same_rows = len(m["time"]) == len(p["time"])
 check(same_rows, f"same number of rows ({len(m['time'])}, {len(p['time'])})")
 if same_rows:
@@ -47,4 +40,4 @@ check(jump >= args.least_jump, f"jumps at the transfers {jump:+.4f} (expected >=
 check(carried < 0, f"energy carried after the first steps {carried:+.4f} (expected < 0: refinement lowers it)")
 steps = np.diff(m["adaptation_energy_carried"])
 check(np.max(steps) <= 1e-3, f"largest carried by one adaptation {np.max(steps):+.2e} (expected <= 1e-3)")
-sys.exit(0 if ok else 1)
+sys.exit(check.exit_code())

@@ -17,6 +17,7 @@ import sys
 import numpy as np
 
 from membrane_flow.run import load_statistics  # noqa: E402 (PYTHONPATH: the build's python/)
+from checks import Checks  # tests/checks.py, next to this script
 
 parser = argparse.ArgumentParser()
 parser.add_argument("dir")
@@ -29,14 +30,7 @@ steps, cells = column["step"][after], column["cells"][after]
 adaptations, jump = column["adaptations"][after], column["adaptation_energy_jump"][after]
 energy = column["energy"][after]
 
-ok = True
-
-
-def check(condition, message):
-    global ok
-    print(("ok      " if condition else "FAILED  ") + message)
-    ok = ok and condition
-
+check = Checks()
 
 n = int(adaptations[-1] - adaptations[0]) if len(adaptations) else 0
 check(len(steps) > 0 and n >= args.min_adaptations,
@@ -50,4 +44,4 @@ if len(steps) > 0:
     further = np.abs(np.diff(jump[settled])).sum() if len(jump[settled]) > 1 else 0.0
     check(further <= 1e-9 * np.abs(energy).max(),
           f"energy change of the further adaptations {further:.3g} <= 1e-9 x energy {np.abs(energy).max():.6g}")
-sys.exit(0 if ok else 1)
+sys.exit(check.exit_code())

@@ -37,15 +37,10 @@ from vtkmodules.vtkCommonDataModel import VTK_QUAD, vtkCellArray, vtkUnstructure
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
 
 import membrane_flow.pictures.render as rs  # noqa: E402
+from checks import NARROW, Checks  # tests/checks.py, next to this script
 
 python = sys.executable
-failures = []
-
-
-def check(condition, message):
-    print(('ok    ' if condition else 'FAIL  ') + message)
-    if not condition:
-        failures.append(message)
+check = Checks(*NARROW)
 
 
 def write_vtu(path, n, height, phi, per_cell, time):
@@ -264,6 +259,6 @@ if len(sys.argv) == 3:
     run_on(sys.argv[1], sys.argv[2])
 else:
     synthetic()
-if failures:
-    sys.exit(f'{len(failures)} check(s) failed')
+if check.failures:
+    sys.exit(f'{check.failed} check(s) failed')
 print('all checks passed')

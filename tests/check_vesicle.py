@@ -10,6 +10,7 @@ import sys
 import numpy as np
 
 from membrane_flow.run import load_statistics, load_summary  # PYTHONPATH: the build's python/
+from checks import Checks  # tests/checks.py, next to this script
 
 parser = argparse.ArgumentParser()
 parser.add_argument("dir")
@@ -23,11 +24,7 @@ args = parser.parse_args()
 column = load_statistics(args.dir)
 summary = load_summary(args.dir)
 
-ok = True
-def check(condition, message):
-    global ok
-    print(("ok      " if condition else "FAILED  ") + message)
-    ok = ok and condition
+check = Checks()
 
 gauss = np.abs(column["gauss_map_area"] - 4 * np.pi).max()
 check(gauss < 1e-10, f"Gauss map area - 4 pi: {gauss:.2e} in every row")
@@ -45,4 +42,4 @@ if args.laplace_pressure is not None:
     error = abs(value - args.laplace_pressure) / max(abs(args.laplace_pressure), 1e-300)
     check(error <= args.tolerance, f"laplace_pressure {value:.6g} against {args.laplace_pressure:.6g} "
           f"(relative error {error:.2e} <= {args.tolerance:g})")
-sys.exit(0 if ok else 1)
+sys.exit(check.exit_code())

@@ -26,18 +26,13 @@ import numpy as np
 
 from membrane_flow import launch  # PYTHONPATH: the build's python/
 from membrane_flow.run import load_statistics, load_summary
+from checks import Checks  # tests/checks.py, next to this script
 
 exe, experiments = sys.argv[1], sys.argv[2]
 env = launch.environment(mpi=True)  # one thread per process; mpirun as root allowed
 work = tempfile.mkdtemp(prefix="membrane_block_solver_")
 
-passed = failed = 0
-
-
-def check(condition, message):
-    global passed, failed
-    print(("ok      " if condition else "FAILED  ") + message)
-    passed, failed = passed + bool(condition), failed + (not condition)
+check = Checks()
 
 
 def run(name, solver, prm, *extra, ranks=1):
@@ -85,5 +80,5 @@ check(refused.returncode == 1 and "<Linear solver/Type> = block" in refused.stdo
       and "<Shape/Curvature mass> = consistent" in refused.stdout,
       f"Type = block with the lumped curvature mass is refused (exit {refused.returncode})")
 
-print(f"{passed} passed, {failed} failed")
-sys.exit(1 if failed else 0)
+print(f"{check.passed} passed, {check.failed} failed")
+sys.exit(check.exit_code())

@@ -25,6 +25,7 @@ import numpy as np
 
 from membrane_flow import launch  # PYTHONPATH: the build's python/
 from membrane_flow.run import load_statistics
+from checks import Checks  # tests/checks.py, next to this script
 
 exe, prm, extra = sys.argv[1], sys.argv[2], sys.argv[3:]
 common = ["--quiet", "--set", "Mesh/Cells per side=16", "--set", "Mesh/Maximum refinement level=0", "--set", "Material/Line tension=630",
@@ -36,11 +37,7 @@ def energies(directory):
     return load_statistics(directory)["energy"]
 
 
-passed = failed = 0
-def check(condition, message):
-    global passed, failed
-    print(("ok      " if condition else "FAILED  ") + message)
-    passed, failed = passed + bool(condition), failed + (not condition)
+check = Checks()
 
 work = tempfile.mkdtemp(prefix="membrane_descent_")
 base = os.path.join(work, "base")
@@ -69,5 +66,5 @@ for big, small in zip(taus, taus[1:]):
     ratio = changes[big] / changes[small]
     check(2.5 < ratio < 6, f"Delta F({big:g}) / Delta F({small:g}) = {ratio:.2f} (last steps, tau ratio 4)")
 shutil.rmtree(work)
-print(f"{passed} passed, {failed} failed")
-sys.exit(1 if failed else 0)
+print(f"{check.passed} passed, {check.failed} failed")
+sys.exit(check.exit_code())

@@ -23,18 +23,13 @@ import numpy as np
 
 from membrane_flow import launch  # PYTHONPATH: the build's python/
 from membrane_flow.run import load_statistics
+from checks import Checks  # tests/checks.py, next to this script
 
 exe, prm = sys.argv[1], sys.argv[2]
 env = launch.environment()
 work = tempfile.mkdtemp(prefix="membrane_line_stiffness_")
 
-passed = failed = 0
-
-
-def check(condition, message):
-    global passed, failed
-    print(("ok      " if condition else "FAILED  ") + message)
-    passed, failed = passed + bool(condition), failed + (not condition)
+check = Checks()
 
 
 def run(name, stiffness, tau, *extra):
@@ -69,5 +64,5 @@ for coarse, fine in zip(differences, differences[1:]):
     check(fine > 0 and coarse / fine > 5,
           f"the difference falls by {coarse / fine:.2f} (> 5) when tau falls by 4: higher than first order")
 
-print(f"{passed} passed, {failed} failed")
-sys.exit(1 if failed else 0)
+print(f"{check.passed} passed, {check.failed} failed")
+sys.exit(check.exit_code())

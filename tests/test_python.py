@@ -20,16 +20,11 @@ import sys
 import numpy as np
 
 import membrane_flow as mf
+from checks import NARROW, Checks  # tests/checks.py, next to this script
 
 prm, program_dir, scratch = sys.argv[1], sys.argv[2], sys.argv[3]
 os.makedirs(scratch, exist_ok=True)
-failures = []
-
-
-def check(condition, message):
-    print(("ok    " if condition else "FAIL  ") + message)
-    if not condition:
-        failures.append(message)
+check = Checks(*NARROW)
 
 
 def relative_difference(a, b):
@@ -204,5 +199,5 @@ except TypeError as e:
     check(True, f"TypeError: {e}")
 check(isinstance(mf.Error('x'), RuntimeError), "membrane_flow.Error is a RuntimeError")
 
-print(f"{len(failures)} failures")
-sys.exit(1 if failures else 0)
+print(f"{check.failed} failures")
+sys.exit(check.exit_code())

@@ -13,15 +13,10 @@ import sys
 import numpy as np
 
 import membrane_flow as mf
+from checks import NARROW, Checks  # tests/checks.py, next to this script
 
 directory, line_tension = sys.argv[1], float(sys.argv[2])
-failures = []
-
-
-def check(condition, message):
-    print(("ok    " if condition else "FAIL  ") + message)
-    if not condition:
-        failures.append(message)
+check = Checks(*NARROW)
 
 
 run = mf.load_run(directory)
@@ -74,5 +69,5 @@ for bad in [lambda: mf.load_run('/nonexistent/run'), lambda: mf.read_vtu('/nonex
     except FileNotFoundError as e:
         check(True, f"FileNotFoundError: {e}")
 
-print(f"{len(failures)} failures")
-sys.exit(1 if failures else 0)
+print(f"{check.failed} failures")
+sys.exit(check.exit_code())

@@ -19,15 +19,9 @@ import numpy as np
 from scipy.integrate import quad
 
 from membrane_flow import sharp_interface as si
+from checks import NARROW, Checks  # tests/checks.py, next to this script
 
-failures = []
-
-
-def check(condition, message):
-    print(('ok    ' if condition else 'FAIL  ') + message)
-    if not condition:
-        failures.append(message)
-
+check = Checks(*NARROW)
 
 # 1. Line tension: c against adaptive quadrature of sqrt(2 f), and against the energy per length of the
 #    equilibrium profile phi = tanh(3 x / (4 xi)) of sigma (xi^2/2 phi'^2 + f(phi)).
@@ -140,7 +134,7 @@ print(f"      B(0) - B(r_d) at r_d = 0.2, 0.1, 0.05, 0.02, 0.01: {['%.4f' % g fo
 check(all(row['success'] for row in rows) and all(g > 0 for g in gaps) and gaps[-1] < 0.6 * gaps[-2],
       "B(r_d) rises towards the complete bud's energy (sphere + matrix) as the neck closes")
 
-if failures:
-    print(f"{len(failures)} check(s) failed")
+if check.failures:
+    print(f"{check.failed} check(s) failed")
     sys.exit(1)
 print("all checks passed")

@@ -51,9 +51,14 @@ def _statistics(path):
     return read_statistics(os.path.join(path, 'statistics.txt') if os.path.isdir(path) else path)
 
 
-def _batch_error(series, batches):
-    means = np.array([b.mean() for b in np.array_split(series, batches)])
-    return means.std(ddof=1) / math.sqrt(batches)
+def batch_means(series, batches):
+    """The means of `batches` consecutive blocks of `series` (np.array_split: sizes differ by at most one)."""
+    return np.array([b.mean() for b in np.array_split(series, batches)])
+
+
+def batch_error(series, batches):
+    """The standard error of the mean of `series` from the means of `batches` consecutive blocks."""
+    return batch_means(series, batches).std(ddof=1) / math.sqrt(batches)
 
 
 class TooFewSteps(ValueError):
@@ -81,7 +86,7 @@ def _compare(name, series, tension, stiffness, tension_weight, bending_rate, ten
     stiffness_mode = stiffness + sigma_mode * tension_weight
     factor = 1 / (1 + (bending_rate - sigma_mode * tension_rate) * tau / 2)
     expected = kT * factor / stiffness_mode
-    error = _batch_error(series, batches)
+    error = batch_error(series, batches)
     return {
         'mode': name, 'measured': float(mean), 'error': float(error),
         'sigma_mean': float(sigma_mean), 'sigma_mode': sigma_mode,

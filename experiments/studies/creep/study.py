@@ -19,6 +19,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "python"))
+from membrane_flow import launch  # noqa: E402
 from membrane_flow.run import load_statistics  # noqa: E402
 
 LONG = "results/studies/branches-gb/level2/long"
@@ -53,13 +54,10 @@ RUNS = {
 
 def run(name, exe):
     (state, t0), stretch, sets, _ = RUNS[name]
-    cmd = [exe, "--quiet", "--overwrite", "--set", f"Checkpoint/Resume from={state}/checkpoint.txt",
-           "--set", f"Time stepping/End time={t0 + stretch:.4f}", "--set", f"Output/Directory={OUT}/{name}",
-           "--set", "Output/Write VTU=false", "--set", "Output/Interval=0.01"]
-    for s in sets:
-        cmd += ["--set", s]
-    cmd.append(f"{state}/parameters.prm")
-    env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+    sets = [f"Checkpoint/Resume from={state}/checkpoint.txt", f"Time stepping/End time={t0 + stretch:.4f}",
+            f"Output/Directory={OUT}/{name}", "Output/Write VTU=false", "Output/Interval=0.01", *sets]
+    cmd = [exe, "--quiet", "--overwrite", *launch.settings(sets), f"{state}/parameters.prm"]
+    env = launch.environment()  # one OpenMP / OpenBLAS thread
     os.makedirs(OUT, exist_ok=True)
     with open(f"{OUT}/{name}.out", "w") as log:
         code = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)

@@ -18,12 +18,23 @@ that would fit each l.
 The discrete cube-sphere is not exactly a discrete equilibrium: at k_BT = 0 it settles into a
 slightly cubic shape (l = 4), whose u_lm^2 adds to the thermal variance; --static subtracts it.
 
+The sampling, R, Sigma, the static part and the error bars are those of
+membrane_flow.spectra.sphere_spectrum (the `spectrum sphere` command, which compares with the
+tension each mode feels, and refuses a run whose tau varies); this script keeps the plain mean
+Sigma in K_l and lambda_l, and the mean of the batch means (spectra.batch_means) as <u_lm^2>.
+
 Usage: analyze.py STATISTICS --kT 1e-4 [--kappa 1] [--mobility 1] [--skip 500] [--batches 20]
                   [--static STATISTICS_AT_ZERO_TEMPERATURE]
 """
 import argparse
+import os
+import sys
 
-import numpy as np
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "python"))
+from membrane_flow import spectra  # noqa: E402
+from membrane_flow.run import read_statistics  # noqa: E402
+
+DEGREES = (2, 3, 4)
 
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("statistics")
@@ -36,49 +47,42 @@ parser.add_argument("--static", help="statistics.txt of the same run at k_BT = 0
                     "discrete sphere's own deformation, the mean shape) is subtracted")
 args = parser.parse_args()
 
-with open(args.statistics) as f:
-    names = f.readline()[1:].split()
-data = np.loadtxt(args.statistics, ndmin=2)
-column = {n: data[:, i] for i, n in enumerate(names)}
-rows = slice(args.skip + 1, None)  # row 0 is the initial state
-n = len(column["step"][rows])
-if n < 2 * args.batches:
+try:
+    result = spectra.sphere_spectrum(args.statistics, args.kT, args.kappa, args.mobility, args.skip, args.batches,
+                                     args.static, DEGREES)
+except spectra.TooFewSteps as e:
     # A run cut short (docs.commands_run runs 3 steps): nothing to compare.
-    print(f"{args.statistics}: {n} steps after the first {args.skip}, too few for {args.batches} batches")
+    print(f"{args.statistics}: {e}")
     raise SystemExit(0)
-tau = column["tau"][rows].mean()
-R = (3 * column["volume"][rows].mean() / (4 * np.pi)) ** (1 / 3)
+except ValueError as e:  # tau not fixed
+    sys.exit(f"{args.statistics}: {e}")
+column = read_statistics(args.statistics)
+rows = slice(args.skip + 1, None)  # row 0 is the initial state, as in sphere_spectrum
+tau, R = result["tau"], result["R"]
 # The tension: the mean area multiplier plus the mean line-energy density G (as on the patch).
+sigma = result["modes"][0]["sigma_mean"]
 line_density = (column["gradient_energy"] + column["well_energy"]) / column["area"]
-sigma = (column["gamma_mean"] + line_density)[rows].mean()
-print(f"steps sampled {n} (from step {int(column['step'][args.skip + 1])}), tau {tau:g}, R {R:.6f}, "
+print(f"steps sampled {result['steps']} (from step {int(column['step'][args.skip + 1])}), tau {tau:g}, R {R:.6f}, "
       f"Sigma = <gamma_mean + G> {sigma:.5g} (G {line_density[rows].mean():.3g})")
-gm_batches = np.array([b.mean() for b in np.array_split(column["gamma_mean"][rows], args.batches)])
-print(f"  gamma_mean batch error {gm_batches.std(ddof=1) / np.sqrt(args.batches):.3g}; "
+print(f"  gamma_mean batch error {spectra.batch_error(column['gamma_mean'][rows], args.batches):.3g}; "
       f"min_corner_sine {column['min_corner_sine'][rows].min():.3f}; area_drift {column['area_drift'][rows][-1]:.3g}")
-
-
-static = {l: 0.0 for l in (2, 3, 4)}
 if args.static:
-    with open(args.static) as f:
-        static_names = f.readline()[1:].split()
-    last = np.loadtxt(args.static, ndmin=2)[-1]
-    static = {l: last[static_names.index(f"shape_mode_{l}")] for l in (2, 3, 4)}
-    print("  subtracted (k_BT = 0): " + ", ".join(f"l = {l}: {static[l]:.3g}" for l in static))
+    print("  subtracted (k_BT = 0): " + ", ".join(f"l = {l}: {v:.3g}" for l, v in result["static"].items()))
 
 
 def expected(l, s):
-    K = args.kappa * (l - 1) * (l + 2) * (l * (l + 1) + s * R**2 / args.kappa)
-    lam = args.mobility * K / (R**4 * (1 + 4 / (l * (l + 1))))
+    """Milner and Safran at the tension s, divided by the backward-Euler factor of the fixed tau."""
+    bending, weight, bending_rate, tension_rate = spectra.sphere_rates(l, R, args.kappa, args.mobility)
+    K, lam = bending + s * weight, bending_rate + s * tension_rate
     return args.kT / (K * (1 + lam * tau / 2)), lam * tau
 
 
 print("| l | lambda tau (Sigma) | <u_lm^2> | error | MS, Sigma = <gamma_mean + G> | ratio | MS, Sigma = 0 | ratio | Sigma that fits |")
 print("|---|---|---|---|---|---|---|---|---|")
-for l in (2, 3, 4):
-    series = column[f"shape_mode_{l}"][rows] - static[l]
-    batches = np.array([b.mean() for b in np.array_split(series, args.batches)])
-    mean, error = batches.mean(), batches.std(ddof=1) / np.sqrt(args.batches)
+for l, mode in zip(DEGREES, result["modes"]):
+    # The mean of the batch means (mode["measured"], the plain mean, when the batches are of equal size).
+    mean = spectra.batch_means(column[f"shape_mode_{l}"][rows] - result["static"][l], args.batches).mean()
+    error = mode["error"]
     e_sigma, lt = expected(l, sigma)
     e_zero, _ = expected(l, 0.0)
     # The Sigma that fits: solve expected(l, s) = mean by bisection (monotone in s).

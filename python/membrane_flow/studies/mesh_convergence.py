@@ -134,9 +134,7 @@ class Case:
         cmd = [exe, '--quiet']
         if overwrite:  # an interrupted case is rerun from scratch (older binaries lack the option)
             cmd.append('--overwrite')
-        for k, v in self.settings(end_time).items():
-            cmd += ['--set', f'{k}={v}']
-        return cmd + [BASE]
+        return cmd + launch.settings(self.settings(end_time)) + [BASE]
 
     def finished(self):
         return os.path.exists(os.path.join(self.dir, 'summary.json'))

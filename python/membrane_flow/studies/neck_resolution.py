@@ -103,10 +103,7 @@ class Case:
         return s
 
     def command(self, exe):
-        cmd = [exe, '--quiet', '--overwrite']
-        for k, v in self.settings():
-            cmd += ['--set', f'{k}={v}']
-        return cmd + [BASE]
+        return [exe, '--quiet', '--overwrite', *launch.settings(self.settings()), BASE]
 
     def shell(self, exe):
         words = [f'{k}={v}' for k, v in ENV.items()] + [exe, '--quiet', '--overwrite']

@@ -45,10 +45,9 @@ def main(argv=None):
     for name, change, sets in VARIANTS:
         run = os.path.join(args.output, name)
         if not os.path.exists(os.path.join(run, 'summary.json')):
-            command = [args.exe, '--quiet', '--overwrite', BASE, '--set', f'Output/Directory={run}',
-                       '--set', 'Output/Write VTU=false', '--set', 'Checkpoint/Interval=0']
-            for s in sets:
-                command += ['--set', s]
+            command = [args.exe, '--quiet', '--overwrite', BASE,
+                       *launch.settings([f'Output/Directory={run}', 'Output/Write VTU=false', 'Checkpoint/Interval=0',
+                                         *sets])]
             print(f'running {name}', flush=True)
             if launch.run(command, env=env)[0] != 0:
                 print(f'{name}: the run failed (see {run}/log)')
