@@ -4,7 +4,7 @@
 #include <membrane/io/stop_signal.h>
 #include <membrane/parameters.h>
 #include <membrane/simulator.h>
-#include <membrane/types.h>
+#include <membrane/core/types.h>
 
 #include <deal.II/base/mpi.h>
 

@@ -1,5 +1,6 @@
 #include <membrane/physics/free_energy.h>
 #include <membrane/shape_preconditioner.h>
+#include <membrane/shape_solver.h>
 #include <membrane/shape_options.h>
 #include <membrane/solvers/cell_assembly.h>
 #include <membrane/solvers/vector_access.h>
@@ -17,7 +18,8 @@ namespace Membrane
 
   namespace
   {
-    constexpr unsigned int pressure_component = 3, curvature_component = 4, first_tangent_component = 5;
+    constexpr unsigned int pressure_component = ShapeComponents::pressure, curvature_component = ShapeComponents::curvature,
+                           first_tangent_component = ShapeComponents::first_tangent;
     /// The lumped vertex integrals, each a scalar-space vector: the mass, then the
     /// three components of integral psi nu, of the two test tangents and of the two
     /// B~ tangents.
@@ -89,7 +91,7 @@ namespace Membrane
               point.H                         = H_q[q];
               const NormalStiffness stiffness = terms.normal_stiffness(point);
               const double          root      = std::sqrt(tauL * stiffness.kappa);
-              // The implicit line stiffness of the tangential law (shape_solver.cc)
+              // The implicit line stiffness of the tangential law (shape_solver/assembly.cc)
               // acts along grad phi; its isotropic bound keeps the tangential block's
               // solve positive definite.
               const double                       line = line_stiffness * grad_phi_q[q].norm_square();
@@ -190,7 +192,7 @@ namespace Membrane
               if (!periodic)
                 {
                   // Closed surfaces test the tangential law and expand B~ in each
-                  // vertex's own orthonormal frame (shape_solver.cc).
+                  // vertex's own orthonormal frame (shape_solver/assembly.cc).
                   Tensor<1, spacedim> nu;
                   const auto          vector_cell = surface.vector_space().cell(cell);
                   for (unsigned int c = 0; c < spacedim; ++c)

@@ -67,7 +67,7 @@
 // stabilization keeps the noisy tangential law's residual, + delta tau L_X (eta, grad psi).
 // The constraints (area rows, the volume row) project the noise as they project the drift.
 //
-// Closed surfaces (MODEL.md section 8; shape_solver_volume.cc): the enclosed volume
+// Closed surfaces (MODEL.md section 8; shape_solver/volume.cc): the enclosed volume
 // adds a global pressure p. Its force p n, tested with psi nu, enters the normal row
 // as - tau L_X p (n.nu, psi) on the left (p > 0 moves the surface along the outward
 // normal: it inflates). With a fixed volume p is the multiplier of the bordered row
@@ -75,7 +75,7 @@
 // solved with the factorization of the step: A y = r and A z = c (c: the p column)
 // give p = (b.y - g) / (b.z) and the solution y - p z (Schur complement of size 1).
 // Where the local area constraint already fixes V (near a sphere) b.z -> 0: below a
-// floor of the compliance -b.z / (tau L_X A) the row is dropped (shape_solver_volume.cc).
+// floor of the compliance -b.z / (tau L_X A) the row is dropped (shape_solver/volume.cc).
 
 #include <membrane/physics/material.h>
 #include <membrane/physics/thermal_noise.h>
@@ -90,6 +90,15 @@
 
 namespace Membrane
 {
+  /// Components of the shape system's Q1 fields: W (0, 1, 2), gamma, H~ and, with the
+  /// consistent curvature mass, B~_1, B~_2 (the normal row is the one tested with the H~
+  /// component). Shared by the assembly, the constraints, the volume term and the block
+  /// preconditioner.
+  namespace ShapeComponents
+  {
+    constexpr unsigned int pressure = 3, curvature = 4, first_tangent = 5;
+  } // namespace ShapeComponents
+
   /// Result of one shape step; all vectors owned.
   struct ShapeUpdate
   {
@@ -138,7 +147,7 @@ namespace Membrane
     /// 0 where the local areas fix the volume; below the floor a fixed volume is left to them.
     double volume_compliance() const { return compliance; }
     bool   volume_held_by_areas() const { return compliance < volume_compliance_floor; }
-    /// See shape_solver_volume.cc.
+    /// See shape_solver/volume.cc.
     static constexpr double volume_compliance_floor = 5e-3;
 
     /// Numeric factorizations so far, over all meshes (one per step and none for corrections,
@@ -160,7 +169,7 @@ namespace Membrane
     /// Add the vertex area defect to the right-hand side of the area equation.
     void add_area_defect(const Surface &surface, const Vector &area_defect);
     ShapeUpdate solve(const Surface &surface, dealii::TimerOutput *timer, bool same_matrix = false);
-    /// shape_solver_volume.cc: the p column c and the volume row b on Gamma^m.
+    /// shape_solver/volume.cc: the p column c and the volume row b on Gamma^m.
     void assemble_volume_coupling(const Surface &surface, const Geometry &geometry, double tau_mobility);
     /// Eliminate p from the solution y of A y = r (z = A^-1 c computed after each new
     /// factorization); returns p.

@@ -4,7 +4,7 @@
 // of the current surface Gamma^m with the fields of step m:
 //  - its energy density (compute_energy, physics/energy.cc);
 //  - its explicit part of the chemical potential Y = dF/dphi (the Cahn-Hilliard step);
-//  - its part of the shape system's normal row (shape_solver.cc), split into
+//  - its part of the shape system's normal row (shape_solver/assembly.cc), split into
 //      the implicit stiffness on H~, -tau L_X kappa ((grad H~, grad psi) + m (H~, psi)),
 //      which the block preconditioner takes too (shape_preconditioner.cc), and
 //      the explicit force, + tau L_X ((flux, grad psi) + (source, psi));

@@ -5,7 +5,7 @@
 // constrained, and one MatSetValues call for the whole cell block does the same work
 // with far less overhead (the insertion was about 8 % of a 7.3 step).
 
-#include <membrane/types.h>
+#include <membrane/core/types.h>
 
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>

@@ -14,7 +14,7 @@
 //  gmres:  restarted GMRES with PETSc's block-Jacobi/ILU, for large runs.
 
 #include <membrane/solvers/linear_solver_options.h>
-#include <membrane/types.h>
+#include <membrane/core/types.h>
 
 #include <petscksp.h>
 

@@ -4,7 +4,7 @@
 // vector: the local form, the array, a search of the ghost set), which made such loops
 // a sizeable part of a step. These views take the array once per loop.
 
-#include <membrane/types.h>
+#include <membrane/core/types.h>
 
 #include <deal.II/base/types.h>
 

@@ -13,7 +13,7 @@
 // displacement reproduces the current surface exactly. Cells are oriented so
 // that the cell normal a_1 x a_2 points outward (positive enclosed volume).
 
-#include <membrane/types.h>
+#include <membrane/core/types.h>
 
 #include <deal.II/base/point.h>
 

@@ -2,7 +2,7 @@
 // A finite element space on the membrane: Q1 with n components, its DoFHandler,
 // periodic and hanging-node constraints, and the parallel index sets.
 
-#include <membrane/types.h>
+#include <membrane/core/types.h>
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>

@@ -6,7 +6,7 @@
 // makes FEValues<2,3> compute surface gradients, normals and ds on Gamma = X(U).
 
 #include <membrane/surface/field_space.h>
-#include <membrane/types.h>
+#include <membrane/core/types.h>
 
 #include <deal.II/fe/mapping_q_cache.h>
 

@@ -12,8 +12,8 @@ namespace Membrane
 
   namespace
   {
-    /// The normal law is the row tested with the H~ component (shape_solver.cc).
-    constexpr unsigned int normal_row = 4;
+    /// The normal law is the row tested with the H~ component (assembly.cc).
+    constexpr unsigned int normal_row = ShapeComponents::curvature;
     // ShapeSolver::volume_compliance_floor: the volume compliance -b.A^-1 c / (tau L_X A) is about 1 for a free surface and tends
     // to 0 where the local area constraint already fixes the volume: near a sphere, the
     // isoperimetric extreme, any area-preserving motion keeps V to first order, and p and a

@@ -1,3 +1,6 @@
+// Shape step, assembly: the seven (or five) rows of the shape system on Gamma^m, with the energy
+// terms' normal stiffness and force, the tangential law, the stabilized area rows, the curvature
+// rows and the thermal noise (the equations are in shape_solver.h). Part of ShapeSolver.
 #include <membrane/physics/free_energy.h>
 #include <membrane/physics/stress_force.h>
 #include <membrane/shape_solver.h>
@@ -6,11 +9,8 @@
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/solver_gmres.h>
 
 #include <array>
-#include <optional>
 
 namespace Membrane
 {
@@ -18,7 +18,8 @@ namespace Membrane
 
   namespace
   {
-    constexpr unsigned int pressure_component = 3, curvature_component = 4, first_tangent_component = 5;
+    constexpr unsigned int pressure_component = ShapeComponents::pressure, curvature_component = ShapeComponents::curvature,
+                           first_tangent_component = ShapeComponents::first_tangent;
     /// Fixes the constant pressure where H = 0 (see the header); dimensionless.
     constexpr double pressure_regularization = 1e-12;
     /// The shape noise's variates are components first_noise_component + 3 q + c of the cell's
@@ -37,22 +38,6 @@ namespace Membrane
     };
   } // namespace
 
-  ShapeSolver::ShapeSolver(const Triangulation &triangulation, const bool periodic, const CurvatureMass curvature_mass)
-    : periodic(periodic)
-    , curvature_mass(curvature_mass)
-    , space(triangulation, curvature_mass == CurvatureMass::lumped ? 5 : 7)
-  {}
-
-  void ShapeSolver::setup()
-  {
-    space.setup(periodic);
-    space.reinit_matrix(matrix);
-    rhs = space.make_owned();
-    if (solver)
-      earlier_factorizations += solver->n_factorizations();
-    solver.reset(); // the mesh (and so the pattern) changed
-    block_preconditioner.reset();
-  }
 
   void ShapeSolver::assemble(const Surface &surface, const Geometry &geometry, const Material &material,
                              const ShapeOptions &options, const double tau, const Vector &phi,
@@ -304,135 +289,5 @@ namespace Membrane
         }
     matrix.compress(VectorOperation::add);
     rhs.compress(VectorOperation::add);
-  }
-
-  void ShapeSolver::add_area_defect(const Surface &surface, const Vector &area_defect)
-  {
-    // Both vectors hold the assembled (condensed) vertex values: constrained rows are
-    // decoupled by the condensation, so their entries do not matter.
-    const FieldSpace &scalars = surface.scalar_space();
-    const Vector      defect  = scalars.ghosted_copy(area_defect);
-    Vector            rows    = space.make_owned();
-    {
-      const LocalValues defect_values(defect);
-      OwnedValues       row_values(rows);
-      for (const auto &cell : space.dof_handler().active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            const auto scalar_cell = scalars.cell(cell);
-            for (const unsigned int v : cell->vertex_indices())
-              {
-                const auto row = cell->vertex_dof_index(v, pressure_component);
-                if (space.owned().is_element(row) && !space.constraints().is_constrained(row))
-                  row_values[row] = defect_values[scalar_cell->vertex_dof_index(v, 0)];
-              }
-          }
-    }
-    rows.compress(VectorOperation::insert);
-    rhs += rows;
-  }
-
-  ShapeUpdate ShapeSolver::step(const Surface &surface, const Geometry &geometry, const Material &material,
-                                const ShapeOptions &options, const LinearSolverOptions &solver_options,
-                                const double tau, const Vector &area_defect, const Vector &phi,
-                                const Vector &potential, TimerOutput *timer, const VolumeCoupling &volume_term,
-                                const ThermalNoise &noise)
-  {
-    Assert(options.curvature_mass == curvature_mass,
-           ExcMessage("the curvature mass of the options must be that of the solver's layout"));
-    volume = volume_term;
-    {
-      std::optional<TimerOutput::Scope> scope;
-      if (timer)
-        scope.emplace(*timer, "shape assembly");
-      assemble(surface, geometry, material, options, tau, phi, potential, noise);
-      add_area_defect(surface, area_defect);
-      if (volume.active)
-        assemble_volume_coupling(surface, geometry, tau * material.shape_mobility);
-    }
-    this->solver_options = solver_options;
-    if (solver_options.type == "block")
-      {
-        AssertThrow(curvature_mass == CurvatureMass::consistent,
-                    ExcMessage("<Linear solver/Type> = block needs <Shape/Curvature mass> = consistent"));
-        std::optional<TimerOutput::Scope> scope;
-        if (timer)
-          scope.emplace(*timer, "shape solve");
-        if (!block_preconditioner)
-          block_preconditioner = std::make_unique<ShapePreconditioner>();
-        block_preconditioner->build(space, matrix, surface, geometry, material, options, tau, phi, periodic);
-      }
-    else if (!solver)
-      solver = std::make_unique<LinearSolver>(solver_options, "shape_");
-    return solve(surface, timer);
-  }
-
-  ShapeUpdate ShapeSolver::correct_area(const Surface &surface, const Vector &area_defect, TimerOutput *timer,
-                                        const VolumeCoupling &volume_term)
-  {
-    Assert(solver || block_preconditioner, ExcMessage("correct_area() needs a step() first"));
-    Assert(volume_term.active == volume.active, ExcMessage("the volume term must be that of the step"));
-    const double scale      = volume.compliance_scale; // of the step's operator
-    volume                  = volume_term;
-    volume.compliance_scale = scale;
-    rhs = 0;
-    add_area_defect(surface, area_defect);
-    return solve(surface, timer, /*same_matrix=*/true);
-  }
-
-  void ShapeSolver::linear_solve(Vector &solution, const Vector &right_hand_side, const bool same_matrix)
-  {
-    if (solver_options.type != "block")
-      {
-        if (same_matrix)
-          solver->solve_again(solution, right_hand_side);
-        else
-          solver->solve(matrix, solution, right_hand_side);
-        return;
-      }
-    // FGMRES: the preconditioner's inner mass solves are iterations (to 1e-8), not a fixed operator.
-    SolverControl        control(solver_options.max_iterations,
-                                 solver_options.relative_tolerance * right_hand_side.l2_norm());
-    SolverFGMRES<Vector> fgmres(control, SolverFGMRES<Vector>::AdditionalData(krylov_restart));
-    solution = 0;
-    ++krylov_solves;
-    if (right_hand_side.l2_norm() == 0)
-      return;
-    try
-      {
-        fgmres.solve(matrix, solution, right_hand_side, *block_preconditioner);
-      }
-    catch (const SolverControl::NoConvergence &failure)
-      {
-        AssertThrow(false, ExcMessage("the linear solver (block) did not reach the relative residual " +
-                                      std::to_string(solver_options.relative_tolerance) + " in " +
-                                      std::to_string(failure.last_step) + " iterations (<Linear solver/Maximum "
-                                      "iterations>); it reached " +
-                                      std::to_string(failure.last_residual / right_hand_side.l2_norm())));
-      }
-    krylov_iterations += control.last_step();
-  }
-
-  ShapeUpdate ShapeSolver::solve(const Surface &surface, TimerOutput *timer, const bool same_matrix)
-  {
-    Vector solution = space.make_owned();
-    {
-      std::optional<TimerOutput::Scope> scope;
-      if (timer)
-        scope.emplace(*timer, "shape solve");
-      linear_solve(solution, rhs, same_matrix);
-    }
-    const double volume_pressure = volume.active ? apply_volume_coupling(solution, same_matrix) : 0.0;
-    space.constraints().distribute(solution);
-    const Vector ghosted = space.ghosted_copy(solution);
-
-    ShapeUpdate update{surface.vector_space().make_owned(), surface.scalar_space().make_owned(),
-                       surface.scalar_space().make_owned()};
-    for (unsigned int c = 0; c < spacedim; ++c)
-      copy_component(space, ghosted, c, surface.vector_space(), update.increment, c);
-    copy_component(space, ghosted, pressure_component, surface.scalar_space(), update.pressure);
-    copy_component(space, ghosted, curvature_component, surface.scalar_space(), update.mean_curvature);
-    update.volume_pressure = volume_pressure;
-    return update;
   }
 } // namespace Membrane
