@@ -104,6 +104,15 @@ namespace Membrane
                         "tau = 1e-2; use it for time-step studies and with Accuracy tolerance). 0: the weight of every "
                         "step is Grid control weight, whatever tau (the paper's rule; the state then depends on the "
                         "number of steps, see docs/time-step-accuracy.md).");
+      prm.declare_entry("Mesh motion", "lagrangian", Patterns::Selection("lagrangian|ale"),
+                        "What the vertices follow. lagrangian: the lipids (the paper's scheme): the vertices are "
+                        "material points, grid control smooths the mesh after each step and is kept only where the "
+                        "energy does not rise (always at a temperature). ale: the shape of the membrane, not its "
+                        "lipids: the mesh moves with the normal velocity plus grid control's smoothing, and phi and "
+                        "the reference areas are carried by the lipids' velocity relative to the mesh (conserving "
+                        "integral phi ds exactly); the energy test judges the physical step, and the mesh motion's "
+                        "change of the discrete energy is recorded as mesh_motion_energy (docs/model.md, mesh "
+                        "motion). Use ale at a temperature and with Line force = stress.");
       prm.leave_subsection();
 
       prm.enter_subsection("Outcome");
@@ -207,6 +216,7 @@ namespace Membrane
     evolve_shape        = prm.get_bool("Evolve shape");
     grid_control_weight = prm.get_double("Grid control weight");
     grid_control_rate   = prm.get_double("Grid control rate");
+    mesh_motion         = parse_mesh_motion(prm.get("Mesh motion"));
     prm.leave_subsection();
 
     prm.enter_subsection("Outcome");

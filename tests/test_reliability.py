@@ -656,7 +656,7 @@ def steps_fixed_time_step_far_too_large():
     d = fresh('tau-too-large')
     expect(coarse + ['--set', 'Time stepping/Adaptive=false'] + out(d) + [budding], 2,
            r'step failed at t = 0: a vertex would move [0-9.]+ cell sizes in one step \(more than '
-           r'<Time stepping/Maximum increment> = 1; 0 there: no bound\); reduce <Time stepping/Time step> or set Adaptive = true')
+           r'<Time stepping/Maximum increment> = 1; 0 there: no bound\); reduce <Time stepping/Time step>, or set <Time stepping/Adaptive> = true')
     with open(os.path.join(d, 'summary.json')) as f:
         summary = json.load(f)
     require(summary['steps'] == 0 and summary['stop_reason'].startswith('step failed'),

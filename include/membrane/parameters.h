@@ -12,6 +12,7 @@
 #include <membrane/solvers/linear_solver_options.h>
 #include <membrane/surface/adaptivity.h>
 #include <membrane/surface/closed_surfaces.h>
+#include <membrane/surface/mesh_motion.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -51,6 +52,7 @@ namespace Membrane
     ShapeOptions shape_options;
     double       grid_control_weight = 0.1; ///< per step; with a rate, the largest per step
     double       grid_control_rate   = 0;   ///< per unit time (0: the weight per step, whatever tau)
+    MeshMotion   mesh_motion         = MeshMotion::lagrangian; ///< what the vertices follow (surface/mesh_motion.h)
 
     /// Grid-control sweeps of a step of length tau (docs/model.md, grid control): with a
     /// rate r, a step whose weight r tau exceeds Grid control weight is split into sweeps of

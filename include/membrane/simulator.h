@@ -151,6 +151,12 @@ namespace Membrane
     /// Projections of X~ back onto the area target and a fixed volume (same operator), the
     /// tangential area correction; gamma gains their pressures and becomes `pressure`.
     bool   restore_areas_and_volume(double tau, const Vector &target, Vector &gamma);
+    /// Mesh motion = ale: the same projections onto the area target, with the vertex areas of the
+    /// material configuration taken to first order on Gamma^m, a^m + (div_s W, chi_i) (the
+    /// constraint on the velocity; X~ is no mesh at a temperature). The volume is restored
+    /// after the mesh motion instead. `displacement_before` is X^m's.
+    bool   restore_material_areas(double tau, const Vector &areas_before, const Vector &target, Vector &gamma,
+                                  const Vector &displacement_before);
     /// phi = phi~ riding on the moved vertices, with integral phi ds restored by a constant.
     void   restore_mass(const Vector &phi_new);
     /// a_ref,i / a_i as a ghosted nodal field; carry_reference_areas() is its inverse
@@ -174,10 +180,26 @@ namespace Membrane
     // Stage 4, grid control (grid_control_step.cc): tangential smoothing of X~ with the ALE
     // remap of phi, kept if F^{m+1} <= F^m (always at k_BT > 0); then geometry and energy.
     void control_grid(double energy_before, double tau);
+    /// Mesh motion = ale (grid_control_step.cc): at k_BT = 0 the physical step's energy
+    /// F(X~, phi~) first; then the mesh moves from Gamma^m (`before`) by the normal part of the
+    /// material displacement plus grid control's smoothing, with phi and the lipid area density
+    /// carried by the relative motion (surface/mesh_motion.h); a fixed volume restored; F^{m+1}.
+    void move_mesh(double tau, const State &before);
+    /// Substeps of the transport of a step whose lipids move by `relative` against the mesh:
+    /// each at most max_transport_cells cells of the finest mesh.
+    unsigned int           transport_substeps(const Vector &relative) const;
+    /// a_ref,i / (a_i + (div_s W, chi_i)) on the current surface Gamma^m: the compression of
+    /// the lipids after the material displacement W (owned, vector space); ghosted.
+    Vector                 material_area_ratio(const Vector &increment) const;
+    static constexpr double max_transport_cells = 0.5;
 
     // Stage 5, acceptance and step control (step_acceptance.cc).
     /// Why the trial step just made is rejected (empty: accepted).
     Rejection judge_step(double tau, double energy_before);
+    /// What the stop message of a failed fixed step suggests: only remedies the run accepts
+    /// (Adaptive = true is refused at k_BT > 0; a degenerate cell of a Lagrangian mesh asks for
+    /// Mesh motion = ale).
+    std::string fixed_step_remedy(const Rejection &why) const;
     /// The local error estimate of the trial step: half the change of its increment
     /// against the previous step's velocity, in cells for the shape and absolute for phi.
     double    local_error(double tau) const;
@@ -259,6 +281,9 @@ namespace Membrane
     std::map<std::string, unsigned int> rejections;
     /// Observables of the last accepted step, for the statistics.
     double max_increment = 0, remap_correction = 0, cell_quality = 1, area_error = 0, shape_mass_correction = 0;
+    /// The energy the step control judges: F^{m+1}, or with Mesh motion = ale F(X~, phi~) of the
+    /// physical step; mesh_motion_energy = F^{m+1} - F(X~, phi~) (0 for the Lagrangian mesh).
+    double physical_energy = 0, mesh_motion_energy = 0;
     /// Closed surfaces: V_0 and the volume pressure p of the last step (step and projections).
     double initial_volume = 0, volume_pressure = 0;
     /// The work integral p dV done on the membrane by the volume term: in the trial step,

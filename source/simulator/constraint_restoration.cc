@@ -5,6 +5,7 @@
 #include <membrane/simulator.h>
 #include <membrane/solvers/vector_access.h>
 #include <membrane/surface/closed_surfaces.h>
+#include <membrane/surface/mesh_motion.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
@@ -97,6 +98,47 @@ namespace Membrane
             gamma += correction.pressure;
             volume_pressure += correction.volume_pressure;
           }
+      }
+    pressure = gamma;
+    return true;
+  }
+
+  bool Simulator::restore_material_areas(const double tau, const Vector &areas_before, const Vector &target,
+                                         Vector &gamma, const Vector &displacement_before)
+  {
+    const ShapeOptions &options = parameters.shape_options;
+    area_projections            = 0;
+    tangential_area_moves       = 0;
+    if (options.correct_area)
+      {
+        TimerOutput::Scope scope(timer, "area projection");
+        const FieldSpace  &vectors = surface.vector_space();
+        Vector             increment = vectors.make_owned();
+        increment                    = surface.displacement();
+        increment -= displacement_before;
+        surface.set_displacement(displacement_before);
+        // The corrections keep the enclosed volume to first order; restore_volume() does the rest.
+        VolumeCoupling volume = volume_term(tau);
+        volume.volume_defect  = 0;
+        for (unsigned int k = 0; k < options.area_corrections; ++k)
+          {
+            Vector areas = areas_before;
+            areas += vertex_area_change(surface, vectors.ghosted_copy(increment));
+            if (max_relative_difference(areas, target) <= options.area_tolerance)
+              break;
+            Vector defect = target;
+            defect -= areas;
+            const ShapeUpdate correction = shape_solver.correct_area(surface, defect, &timer, volume);
+            if (!std::isfinite(correction.increment.l2_norm()))
+              return false;
+            increment += correction.increment;
+            gamma += correction.pressure;
+            ++area_projections;
+          }
+        Vector moved = vectors.make_owned();
+        moved        = displacement_before;
+        moved += increment;
+        surface.set_displacement(moved);
       }
     pressure = gamma;
     return true;

@@ -1,8 +1,11 @@
-// Stage 4 of a step: grid control. Tangential smoothing of the Lagrangian surface X~ with the
-// ALE remap of phi (MODEL.md section 6), kept when the step as a whole descends (always at
-// k_BT > 0); then the geometry and energy F^{m+1}. Part of Simulator.
+// Stage 4 of a step: the mesh. Lagrangian: grid control, the tangential smoothing of X~ with the
+// ALE remap of phi (MODEL.md section 4), kept when the step as a whole descends (always at
+// k_BT > 0). ALE: the physical step's energy at X~, then the mesh motion of surface/mesh_motion.h.
+// Then the geometry and energy F^{m+1}. Part of Simulator.
 #include <membrane/simulator.h>
+#include <membrane/solvers/vector_access.h>
 #include <membrane/surface/grid_control.h>
+#include <membrane/surface/mesh_motion.h>
 
 #include <cmath>
 
@@ -60,5 +63,83 @@ namespace Membrane
     remap_correction  = 0;
     grid_move_skipped = true;
     update_geometry();
+  }
+
+  Vector Simulator::material_area_ratio(const Vector &increment) const
+  {
+    const Vector change = vertex_area_change(surface, surface.vector_space().ghosted_copy(increment));
+    const Vector areas  = vertex_areas(surface);
+    Vector       ratio  = surface.scalar_space().make_owned();
+    {
+      const LocalValues area(areas), grown(change), reference(reference_areas);
+      OwnedValues       values(ratio);
+      for (const auto i : ratio.locally_owned_elements())
+        values[i] = area[i] + grown[i] > 0 ? reference[i] / (area[i] + grown[i]) : 1.0;
+    }
+    ratio.compress(VectorOperation::insert);
+    surface.scalar_space().constraints().distribute(ratio);
+    return surface.scalar_space().ghosted_copy(ratio);
+  }
+
+  unsigned int Simulator::transport_substeps(const Vector &relative) const
+  {
+    const double cells = relative.linfty_norm() / reference_cell_size();
+    return static_cast<unsigned int>(std::max(1.0, std::ceil(cells / max_transport_cells)));
+  }
+
+  void Simulator::move_mesh(const double tau, const State &before)
+  {
+    const auto update_geometry = [&]() {
+      TimerOutput::Scope scope(timer, "geometry");
+      geometry = compute_geometry(surface);
+      energy   = compute_energy(surface, geometry, phi, parameters.material);
+    };
+    // The physical step is X^m -> X~ = X^m + W with phi~ carried by the lipids: its energy is
+    // what the step control judges (at k_BT = 0: at a temperature no energy test applies, and
+    // the material configuration X~ is no mesh: its cells fold).
+    const bool judged = !parameters.thermal.active();
+    if (judged)
+      update_geometry();
+    {
+      TimerOutput::Scope scope(timer, "mesh motion");
+      const FieldSpace  &vectors  = surface.vector_space();
+      Vector             material = vectors.make_owned(); // W
+      material                    = surface.displacement();
+      material -= before.displacement;
+      // Back on Gamma^m: the mesh moves by the normal part of W plus the smoothing, at the
+      // normals of Gamma^m that the shape step used (before.geometry).
+      surface.set_displacement(before.displacement);
+      Vector       mesh   = ale_mesh_increment(surface, vectors.ghosted_copy(material), before.geometry.normal,
+                                               parameters.grid_control_sweeps_of_step(tau),
+                                               parameters.grid_control_weight_of_step(tau));
+      Vector       relative = mesh; // d = W^mesh - W
+      relative -= material;
+      // The lipid area density a_ref / a and phi, carried together from Gamma^m. The explicit
+      // transport is accurate (and Lax-Wendroff stable) for relative moves below a cell; at a
+      // temperature the lipids' random walk moves them further, so the move is split into
+      // substeps of at most half a cell of the finest mesh, each from where the last one left.
+      const unsigned int substeps = transport_substeps(relative);
+      mesh *= 1.0 / substeps;
+      relative *= 1.0 / substeps;
+      // The lipids of vertex i cover a^m_i + (div_s W, chi_i) after the physical step (the
+      // incompressibility is a constraint on the velocity: its linear form); that compression
+      // ratio a_ref / a stays with the vertex through the mesh motion, as through grid control.
+      const Vector density = material_area_ratio(material);
+      for (unsigned int k = 0; k < substeps; ++k)
+        move_and_transport(surface, mesh, relative, {&phi});
+      carry_reference_areas(density);
+      // What the step control bounds and compares is the motion of the shape, not of the lipids.
+      step_increment = surface.displacement();
+      step_increment -= before.displacement;
+      max_increment = step_increment.linfty_norm();
+      if (volume_fixed())
+        restore_volume();
+    }
+    if (judged)
+      physical_energy = energy.total();
+    update_geometry();
+    if (!judged)
+      physical_energy = energy.total();
+    mesh_motion_energy = energy.total() - physical_energy;
   }
 } // namespace Membrane

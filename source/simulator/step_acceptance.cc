@@ -13,7 +13,7 @@ namespace Membrane
 
   Simulator::Rejection Simulator::judge_step(const double tau_trial, const double energy_before)
   {
-    if (!std::isfinite(energy.total()))
+    if (!std::isfinite(energy.total()) || !std::isfinite(physical_energy))
       return {"non_finite", "the energy became non-finite"};
     if (parameters.evolve_shape && cell_quality < parameters.min_cell_quality)
       return {"degenerate_cell", "a cell degenerated (corner sine " + format(cell_quality) + " < " +
@@ -27,7 +27,9 @@ namespace Membrane
                             "; 0 there: no bound)"};
     // A moving volume target or a prescribed pressure does work p dV on the membrane:
     // F - integral p dV, not F, is what the constrained gradient flow decreases.
-    const double rise = energy.total() - energy_before - step_pressure_work;
+    // With Mesh motion = ale the physical step alone: the mesh motion's change is a discretization
+    // error, recorded as mesh_motion_energy.
+    const double rise = physical_energy - energy_before - step_pressure_work;
     // At a temperature the energy fluctuates: a rise is no sign of a failed step.
     if (!parameters.thermal.active() && rise > parameters.energy_tolerance * std::max(std::abs(energy_before), 1e-300))
       return {"energy_rise", "the energy would rise by " + format(rise)};
@@ -43,6 +45,16 @@ namespace Membrane
                                  " x <Time stepping/Accuracy tolerance>"};
       }
     return {};
+  }
+
+  std::string Simulator::fixed_step_remedy(const Rejection &why) const
+  {
+    std::string remedy = "; reduce <Time stepping/Time step>";
+    if (why.kind == "degenerate_cell" && parameters.mesh_motion == MeshMotion::lagrangian)
+      remedy += ", or set <Shape/Mesh motion> = ale (the mesh then does not follow the lipids)";
+    if (!parameters.thermal.active())
+      remedy += ", or set <Time stepping/Adaptive> = true";
+    return remedy;
   }
 
   double Simulator::local_error(const double tau) const

@@ -91,7 +91,7 @@ namespace Membrane
         if (!step_control.reject(trial, rejection_factor))
           return stop("step failed at t = " + format(time) + ": " + why.message +
                         (parameters.adaptive ? "; tau fell below <Time stepping/Minimum time step>" + curvature_resolution_note()
-                                             : "; reduce <Time stepping/Time step> or set Adaptive = true") +
+                                             : fixed_step_remedy(why)) +
                         line_stiffness_note(why, trial) +
                         ". The last good state is kept",
                       true);
@@ -210,6 +210,7 @@ namespace Membrane
     max_increment                = 0;
     remap_correction             = 0;
     step_pressure_work           = 0;
+    mesh_motion_energy           = 0;
     Rejection why;
     try
       {
@@ -225,9 +226,20 @@ namespace Membrane
             const Vector areas_before  = vertex_areas(surface);
             const Vector target        = area_target(tau_trial, areas_before);
             Vector       gamma;
+            const bool   ale = parameters.mesh_motion == MeshMotion::ale;
+            // The ALE scheme restores nothing on the material configuration X~, which it never
+            // builds as a mesh: the constraints hold on the moved mesh (grid_control_step.cc).
             if (!shape_step(tau_trial, areas_before, target, gamma) ||
-                !restore_areas_and_volume(tau_trial, target, gamma))
+                !(ale ? restore_material_areas(tau_trial, areas_before, target, gamma, before.displacement) :
+                        restore_areas_and_volume(tau_trial, target, gamma)))
               why = {"non_finite", "the shape solve gave non-finite values"};
+            else if (ale)
+              {
+                pressure = gamma;
+                phi      = phi_new; // integral phi ds of Gamma^m, carried exactly by the transport
+                move_mesh(tau_trial, before);
+                step_pressure_work = pressure_work_of_step(volume_before, pressure_before);
+              }
             else
               {
                 restore_mass(phi_new);
@@ -236,10 +248,15 @@ namespace Membrane
           }
         else
           phi = phi_new;
-        // 4. grid control with the ALE remap of phi; geometry and F^{m+1}   (grid_control_step.cc)
+        // 4. grid control with the ALE remap of phi, or the ALE mesh motion; geometry and F^{m+1}
+        //                                                                     (grid_control_step.cc)
         if (why.empty())
           {
-            control_grid(energy_before + step_pressure_work, tau_trial);
+            if (!(parameters.evolve_shape && parameters.mesh_motion == MeshMotion::ale))
+              {
+                control_grid(energy_before + step_pressure_work, tau_trial);
+                physical_energy = energy.total();
+              }
             cell_quality = min_corner_sine(surface, geometry.normal);
           }
       }
