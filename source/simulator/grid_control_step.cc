@@ -114,8 +114,7 @@ namespace Membrane
                                                parameters.grid_control_weight_of_step(tau));
       Vector       relative = mesh; // d = W^mesh - W
       relative -= material;
-      // The lipid area density a_ref / a and phi, carried together from Gamma^m. The explicit
-      // transport is accurate (and Lax-Wendroff stable) for relative moves below a cell; at a
+      // phi, carried from Gamma^m. The explicit transport is accurate (and Lax-Wendroff stable) for relative moves below a cell; at a
       // temperature the lipids' random walk moves them further, so the move is split into
       // substeps of at most half a cell of the finest mesh, each from where the last one left.
       const unsigned int substeps = transport_substeps(relative);
