@@ -26,6 +26,7 @@
 #include <membrane/io/statistics.h>
 #include <membrane/parameters.h>
 #include <membrane/physics/energy.h>
+#include <membrane/physics/tangential_noise.h>
 #include <membrane/shape_solver.h>
 #include <membrane/surface/tangential_area_correction.h>
 #include <membrane/surface/geometry.h>
@@ -134,7 +135,8 @@ namespace Membrane
     // and chemical_potential; false if phi~ is not finite or |phi~| > 10.
     bool phase_step(double tau, Vector &phi_new);
     /// The thermal noise of the step being taken (keyed by the step index, so that a
-    /// retried or resumed step draws the same variates).
+    /// retried or resumed step draws the same variates). With Mesh motion = ale its tangential
+    /// part in the shape step is the irrotational part of tangential_noise.
     ThermalNoise noise_of_step() const;
 
     // Stage 2, the shape step (shape_step.cc): X~ = X^m + W aiming at the vertex areas
@@ -185,9 +187,10 @@ namespace Membrane
     /// material displacement plus grid control's smoothing, with phi and the lipid area density
     /// carried by the relative motion (surface/mesh_motion.h); a fixed volume restored; F^{m+1}.
     void move_mesh(double tau, const State &before);
-    /// Substeps of the transport of a step whose lipids move by `relative` against the mesh:
-    /// each at most max_transport_cells cells of the finest mesh.
-    unsigned int           transport_substeps(const Vector &relative) const;
+    /// Substeps of the transport of a step whose lipids move by `relative` (and the solenoidal
+    /// noise, `solenoidal` at most) against the mesh: each at most max_transport_cells cells of the
+    /// finest mesh.
+    unsigned int           transport_substeps(const Vector &relative, double solenoidal) const;
     /// a_ref,i / (a_i + (div_s W, chi_i)) on the current surface Gamma^m: the compression of
     /// the lipids after the material displacement W (owned, vector space); ghosted.
     Vector                 material_area_ratio(const Vector &increment) const;
@@ -284,6 +287,10 @@ namespace Membrane
     /// The energy the step control judges: F^{m+1}, or with Mesh motion = ale F(X~, phi~) of the
     /// physical step; mesh_motion_energy = F^{m+1} - F(X~, phi~) (0 for the Lagrangian mesh).
     double physical_energy = 0, mesh_motion_energy = 0;
+    /// Mesh motion = ale at k_BT > 0: the Helmholtz split of the trial step's tangential noise
+    /// (physics/tangential_noise.h): chi for the shape step, psi for the lipids' transport.
+    TangentialNoise tangential_noise;
+    bool            split_noise = false; ///< the trial step uses tangential_noise
     /// Closed surfaces: V_0 and the volume pressure p of the last step (step and projections).
     double initial_volume = 0, volume_pressure = 0;
     /// The work integral p dV done on the membrane by the volume term: in the trial step,

@@ -3,6 +3,7 @@
 // rows and the thermal noise (the equations are in shape_solver.h). Part of ShapeSolver.
 #include <membrane/physics/free_energy.h>
 #include <membrane/physics/stress_force.h>
+#include <membrane/physics/tangential_noise.h>
 #include <membrane/shape_solver.h>
 #include <membrane/solvers/cell_assembly.h>
 #include <membrane/solvers/vector_access.h>
@@ -22,15 +23,16 @@ namespace Membrane
                            first_tangent_component = ShapeComponents::first_tangent;
     /// Fixes the constant pressure where H = 0 (see the header); dimensionless.
     constexpr double pressure_regularization = 1e-12;
-    /// The shape noise's variates are components first_noise_component + 3 q + c of the cell's
-    /// key; the Cahn-Hilliard noise of the same step uses components 0 and 1.
-    constexpr unsigned int first_noise_component = 8;
 
     /// Frozen data of Gamma^m at one quadrature point.
     struct PointData
     {
       Tensor<1, spacedim> nu, grad_phi, tangent[2], unit_tangent[2];
-      Tensor<1, spacedim> noise; ///< tau L_X eta: the thermal force density (0 at k_BT = 0)
+      /// tau L_X eta, the thermal displacement density (0 at k_BT = 0): its part along nu in the
+      /// normal row, and in the tangential law and its residual either eta itself or, with the
+      /// split of the ALE scheme, grad_s chi (physics/tangential_noise.h).
+      double              normal_noise = 0;
+      Tensor<1, spacedim> tangential_noise;
       Tensor<1, spacedim> stress_force; ///< f of the stress terms (read only with Line force = stress)
       double              H = 0, Y = 0;
       NormalStiffness     stiffness; ///< of the energy terms (physics/free_energy.h)
@@ -58,7 +60,7 @@ namespace Membrane
     std::vector<double>              phi_q(n_q), H_q(n_q), K_q(n_q), Y_q(n_q);
     std::vector<Tensor<1, spacedim>> grad_phi_q(n_q), nu_q(n_q);
     std::vector<Tensor<2, spacedim>> grad_nu_q(n_q);
-    std::vector<Tensor<1, spacedim>> stress_force_q(n_q);
+    std::vector<Tensor<1, spacedim>> stress_force_q(n_q), grad_chi_q(n_q);
     std::vector<PointData>           data(n_q);
     // Unit normals and tangent frames at the cell's vertices (closed surfaces and the
     // lumped curvature mass, see below).
@@ -121,6 +123,8 @@ namespace Membrane
           vector_values[all_components].get_function_gradients(geometry.normal, grad_nu_q);
           if (stress_form)
             vector_values[all_components].get_function_values(stress, stress_force_q);
+          if (noise.active() && noise.tangential_potential)
+            scalar_values.get_function_gradients(*noise.tangential_potential, grad_chi_q);
           if (!periodic || lumped)
             {
               vectors.cell(cell)->get_dof_values(geometry.normal, normal_dofs);
@@ -170,11 +174,9 @@ namespace Membrane
               // Thermal force, times tau L_X: standard deviation sqrt(2 k_BT tau L_X / w_q) per component.
               if (noise.active())
                 {
-                  const double        scale = std::sqrt(2 * noise.temperature * tauL / fe_values.JxW(q));
-                  const std::uint64_t key   = cell_key(cell->id());
-                  for (unsigned int c = 0; c < spacedim; ++c)
-                    d.noise[c] =
-                      scale * standard_normal(noise.seed, noise.step, key, first_noise_component + spacedim * q + c);
+                  const Tensor<1, spacedim> eta = shape_noise(noise, tauL, cell_key(cell->id()), q, fe_values.JxW(q));
+                  d.normal_noise                = eta * nu_q[q];
+                  d.tangential_noise            = noise.tangential_potential ? grad_chi_q[q] : eta;
                 }
             }
 
@@ -266,15 +268,15 @@ namespace Membrane
                   double b = 0;
                   if (tangential_row) // + tau L_X (Y grad phi + eta, psi a_k)
                     b = tauL * d.Y * (d.grad_phi * test_tangent(i, tangent_k, d)) * psi +
-                        (d.noise * test_tangent(i, tangent_k, d)) * psi;
+                        (d.tangential_noise * test_tangent(i, tangent_k, d)) * psi;
                   else if (reduced && ci == 0)
                     b = -(nu_i * grad_psi); // -(nu_i . grad_s X^m, grad_s psi)
                   else if (ci < spacedim)
                     b = -grad_psi[ci]; // -(grad_s X^m, grad_s psi_vec)
                   else if (ci == pressure_component) // + a_target - a^m: add_area_defect()
-                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi) + delta * (d.noise * grad_psi);
+                    b = delta * tauL * d.Y * (d.grad_phi * grad_psi) + delta * (d.tangential_noise * grad_psi);
                   else // normal row, + tau L_X (eta, psi nu)
-                    b = tauL * (d.force.flux * grad_psi + d.force.source * psi) + (d.noise * d.nu) * psi;
+                    b = tauL * (d.force.flux * grad_psi + d.force.source * psi) + d.normal_noise * psi;
                   // Line force = stress: + tau L_X (f, psi a_k) in the tangential law and its residual
                   // + delta tau L_X (f, grad psi) in the area row (f . nu is in the normal row's source).
                   if (stress_form && tangential_row)

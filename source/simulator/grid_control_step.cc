@@ -81,9 +81,9 @@ namespace Membrane
     return surface.scalar_space().ghosted_copy(ratio);
   }
 
-  unsigned int Simulator::transport_substeps(const Vector &relative) const
+  unsigned int Simulator::transport_substeps(const Vector &relative, const double solenoidal) const
   {
-    const double cells = relative.linfty_norm() / reference_cell_size();
+    const double cells = (relative.linfty_norm() + solenoidal) / reference_cell_size();
     return static_cast<unsigned int>(std::max(1.0, std::ceil(cells / max_transport_cells)));
   }
 
@@ -117,7 +117,9 @@ namespace Membrane
       // phi, carried from Gamma^m. The explicit transport is accurate (and Lax-Wendroff stable) for relative moves below a cell; at a
       // temperature the lipids' random walk moves them further, so the move is split into
       // substeps of at most half a cell of the finest mesh, each from where the last one left.
-      const unsigned int substeps = transport_substeps(relative);
+      // At a temperature the lipids also move by the solenoidal noise (split_noise).
+      const Vector      *stream     = split_noise ? &tangential_noise.stream : nullptr;
+      const unsigned int substeps   = transport_substeps(relative, stream ? tangential_noise.max_stream_displacement : 0);
       mesh *= 1.0 / substeps;
       relative *= 1.0 / substeps;
       // The lipids of vertex i cover a^m_i + (div_s W, chi_i) after the physical step (the
@@ -125,7 +127,7 @@ namespace Membrane
       // ratio a_ref / a stays with the vertex through the mesh motion, as through grid control.
       const Vector density = material_area_ratio(material);
       for (unsigned int k = 0; k < substeps; ++k)
-        move_and_transport(surface, mesh, relative, {&phi});
+        move_and_transport(surface, mesh, relative, {&phi}, stream, 1.0 / substeps);
       carry_reference_areas(density);
       // What the step control bounds and compares is the motion of the shape, not of the lipids.
       step_increment = surface.displacement();

@@ -29,6 +29,8 @@ namespace Membrane
   {
     ThermalNoise noise = parameters.thermal;
     noise.step         = step;
+    if (split_noise)
+      noise.tangential_potential = &tangential_noise.potential;
     return noise;
   }
 } // namespace Membrane

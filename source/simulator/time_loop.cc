@@ -227,6 +227,12 @@ namespace Membrane
             const Vector target        = area_target(tau_trial, areas_before);
             Vector       gamma;
             const bool   ale = parameters.mesh_motion == MeshMotion::ale;
+            // The ALE scheme's tangential noise: its irrotational part in the shape step, its
+            // solenoidal part in the lipids' transport (physics/tangential_noise.h).
+            split_noise = ale && parameters.thermal.active();
+            if (split_noise)
+              tangential_noise = split_tangential_noise(surface, geometry.normal, noise_of_step(),
+                                                        tau_trial * parameters.material.shape_mobility);
             // The ALE scheme restores nothing on the material configuration X~, which it never
             // builds as a mesh: the constraints hold on the moved mesh (grid_control_step.cc).
             if (!shape_step(tau_trial, areas_before, target, gamma) ||

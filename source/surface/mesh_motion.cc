@@ -86,16 +86,18 @@ namespace Membrane
     return change;
   }
 
-  Vector transport_flux(const Surface &surface, const Vector &relative, const Vector &phi)
+  Vector transport_flux(const Surface &surface, const Vector &relative, const Vector &phi, const Vector *stream,
+                        const double stream_scale)
   {
     const FieldSpace       &scalars = surface.scalar_space();
     const FieldSpace       &vectors = surface.vector_space();
     const QGauss<dim>       quadrature(2);
     FEValues<dim, spacedim> fe_values(surface.mapping(), scalars.fe(), quadrature,
-                                      update_values | update_gradients | update_JxW_values);
+                                      update_values | update_gradients | update_JxW_values | update_jacobians);
     FEValues<dim, spacedim> vector_values(surface.mapping(), vectors.fe(), quadrature, update_values);
     const FEValuesExtractors::Vector     all_components(0);
-    std::vector<Tensor<1, spacedim>>     d(quadrature.size());
+    std::vector<Tensor<1, spacedim>>     d(quadrature.size()), nu(quadrature.size()), grad_stream(quadrature.size());
+    const Vector normal = stream ? vectors.ghosted_copy(compute_vertex_normals(surface)) : Vector();
     std::vector<double>                  phi_q(quadrature.size());
     std::vector<Tensor<1, spacedim>>     grad_phi(quadrature.size());
     dealii::Vector<double>               local(scalars.fe().n_dofs_per_cell());
@@ -107,6 +109,14 @@ namespace Membrane
           fe_values.reinit(cell);
           vector_values.reinit(vectors.cell(cell));
           vector_values[all_components].get_function_values(relative, d);
+          if (stream)
+            {
+              // The lipids also move by the solenoidal noise n x grad_s psi: d gains its negative.
+              vector_values[all_components].get_function_values(normal, nu);
+              fe_values.get_function_gradients(*stream, grad_stream);
+              for (const unsigned int q : fe_values.quadrature_point_indices())
+                d[q] -= stream_scale * cross_product_3d(oriented_cell_normal(fe_values.jacobian(q), nu[q]), grad_stream[q]);
+            }
           fe_values.get_function_values(phi, phi_q);
           fe_values.get_function_gradients(phi, grad_phi);
           local = 0;
@@ -128,14 +138,14 @@ namespace Membrane
   }
 
   void move_and_transport(Surface &surface, const Vector &mesh_increment, const Vector &relative,
-                          const std::vector<Vector *> &fields)
+                          const std::vector<Vector *> &fields, const Vector *stream, const double stream_scale)
   {
     const FieldSpace   &scalars = surface.scalar_space();
     const FieldSpace   &vectors = surface.vector_space();
     const Vector        d       = vectors.ghosted_copy(relative);
     std::vector<Vector> fluxes;
     for (const Vector *f : fields)
-      fluxes.push_back(transport_flux(surface, d, *f));
+      fluxes.push_back(transport_flux(surface, d, *f, stream, stream_scale));
     const Vector areas_from = vertex_areas(surface);
 
     Vector displacement = vectors.make_owned();

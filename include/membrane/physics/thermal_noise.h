@@ -6,6 +6,8 @@
 // counter-based generator keyed by (seed, step, global id of the vertex or cell, component):
 // the trajectory does not depend on the partition, on the order of assembly or on a resume.
 
+#include <membrane/core/types.h>
+
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/grid/cell_id.h>
 
@@ -18,6 +20,9 @@ namespace Membrane
     double        temperature = 0; ///< k_BT in the energy unit (0: deterministic)
     std::uint64_t seed        = 1;
     std::uint64_t step        = 0; ///< the index of the step being taken
+    /// The ALE scheme's shape step: its tangential noise is grad_s chi of this field (ghosted,
+    /// scalar space; physics/tangential_noise.h). Null: the white noise itself.
+    const Vector *tangential_potential = nullptr;
 
     bool active() const { return temperature > 0; }
   };

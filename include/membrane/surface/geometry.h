@@ -59,6 +59,23 @@ namespace Membrane
     return a;
   }
 
+  /// The cell's unit normal a_1 x a_2 / |a_1 x a_2| from the Jacobian at a point, turned to the
+  /// side of `nu` (the vertex normal field there): the cells of a closed mesh need not share an
+  /// orientation.
+  inline dealii::Tensor<1, spacedim> oriented_cell_normal(const dealii::DerivativeForm<1, dim, spacedim> &jacobian,
+                                                          const dealii::Tensor<1, spacedim>             &nu)
+  {
+    dealii::Tensor<1, spacedim> a1, a2;
+    for (unsigned int c = 0; c < spacedim; ++c)
+      {
+        a1[c] = jacobian[c][0];
+        a2[c] = jacobian[c][1];
+      }
+    dealii::Tensor<1, spacedim> n = dealii::cross_product_3d(a1, a2);
+    n /= n.norm();
+    return n * nu < 0 ? -n : n;
+  }
+
   /// All three, ghosted.
   Geometry compute_geometry(const Surface &surface);
 

@@ -50,13 +50,18 @@ namespace Membrane
   Vector vertex_area_change(const Surface &surface, const Vector &increment);
 
   /// The ALE transport flux F_i = (f d, grad_s chi_i) + 1/2 (d . grad_s f, d . grad_s chi_i) on
-  /// the current surface (owned, scalar space; sums to zero). `relative` and `f` ghosted.
-  Vector transport_flux(const Surface &surface, const Vector &relative, const Vector &f);
+  /// the current surface (owned, scalar space; sums to zero). `relative` and `f` ghosted. A
+  /// `stream` psi (ghosted, scalar space) adds the lipids' solenoidal displacement
+  /// stream_scale n x grad_s psi to their motion: d gains its negative (physics/tangential_noise.h).
+  Vector transport_flux(const Surface &surface, const Vector &relative, const Vector &f,
+                        const Vector *stream = nullptr, double stream_scale = 1);
 
   /// Moves the surface by `mesh_increment` (owned, vector space) and carries each nodal field
   /// of `fields` (ghosted, scalar space, updated in place) conservatively along the relative
   /// displacement `relative` (owned): m_i^{new} f_i^{new} = m_i f_i - F_i with the lumped vertex
-  /// areas m of the surface before and after the move.
+  /// areas m of the surface before and after the move; `stream` and `stream_scale` as in
+  /// transport_flux.
   void move_and_transport(Surface &surface, const Vector &mesh_increment, const Vector &relative,
-                          const std::vector<Vector *> &fields);
+                          const std::vector<Vector *> &fields, const Vector *stream = nullptr,
+                          double stream_scale = 1);
 } // namespace Membrane
