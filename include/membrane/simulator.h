@@ -187,6 +187,8 @@ namespace Membrane
     /// material displacement plus grid control's smoothing, with phi and the lipid area density
     /// carried by the relative motion (surface/mesh_motion.h); a fixed volume restored; F^{m+1}.
     void move_mesh(double tau, const State &before);
+    /// The geometry and the energy of the current surface and phi.
+    void update_geometry();
     /// Substeps of the transport of a step whose lipids move by `relative` (and the solenoidal
     /// noise, `solenoidal` at most) against the mesh: each at most max_transport_cells cells of the
     /// finest mesh.

@@ -22,7 +22,8 @@ namespace Membrane
                       "docs/units.md): the thermal noise of the fluctuating gradient flow (MODEL.md section 10). "
                       "The Cahn-Hilliard step gains a conserved random flux of covariance 2 k_BT L_phi / tau per "
                       "cell, the shape step a random force of covariance 2 k_BT / (tau L_X) times the mass matrix, "
-                      "projected by the area and volume constraints like the deterministic force. 0: the "
+                      "projected by the area and volume constraints like the deterministic force (with <Shape/Mesh motion> = ale "
+                      "its solenoidal tangential part moves only the lipids, physics/tangential_noise.h). 0: the "
                       "deterministic flow. Needs <Time stepping/Adaptive> = false (a fixed tau: the energy "
                       "fluctuates, so energy-descent control does not apply).");
     prm.declare_entry("Noise seed", "1", dealii::Patterns::Integer(0),

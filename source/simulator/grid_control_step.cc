@@ -15,12 +15,6 @@ namespace Membrane
 
   void Simulator::control_grid(const double energy_before, const double tau)
   {
-    const Material &material = parameters.material;
-    const auto      update_geometry = [&]() {
-      TimerOutput::Scope scope(timer, "geometry");
-      geometry = compute_geometry(surface);
-      energy   = compute_energy(surface, geometry, phi, material);
-    };
     if (!(parameters.evolve_shape && parameters.grid_control_weight > 0))
       return update_geometry();
 
@@ -65,6 +59,13 @@ namespace Membrane
     update_geometry();
   }
 
+  void Simulator::update_geometry()
+  {
+    TimerOutput::Scope scope(timer, "geometry");
+    geometry = compute_geometry(surface);
+    energy   = compute_energy(surface, geometry, phi, parameters.material);
+  }
+
   Vector Simulator::material_area_ratio(const Vector &increment) const
   {
     const Vector change = vertex_area_change(surface, surface.vector_space().ghosted_copy(increment));
@@ -89,11 +90,6 @@ namespace Membrane
 
   void Simulator::move_mesh(const double tau, const State &before)
   {
-    const auto update_geometry = [&]() {
-      TimerOutput::Scope scope(timer, "geometry");
-      geometry = compute_geometry(surface);
-      energy   = compute_energy(surface, geometry, phi, parameters.material);
-    };
     // The physical step is X^m -> X~ = X^m + W with phi~ carried by the lipids: its energy is
     // what the step control judges (at k_BT = 0: at a temperature no energy test applies, and
     // the material configuration X~ is no mesh: its cells fold).
