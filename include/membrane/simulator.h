@@ -182,11 +182,20 @@ namespace Membrane
     // Stage 4, grid control (grid_control_step.cc): tangential smoothing of X~ with the ALE
     // remap of phi, kept if F^{m+1} <= F^m (always at k_BT > 0); then geometry and energy.
     void control_grid(double energy_before, double tau);
-    /// Mesh motion = ale (grid_control_step.cc): at k_BT = 0 the physical step's energy
-    /// F(X~, phi~) first; then the mesh moves from Gamma^m (`before`) by the normal part of the
-    /// material displacement plus grid control's smoothing, with phi and the lipid area density
-    /// carried by the relative motion (surface/mesh_motion.h); a fixed volume restored; F^{m+1}.
+    /// Mesh motion = ale (grid_control_step.cc): the mesh moves from Gamma^m (`before`) by the
+    /// normal part of the material displacement plus grid control's smoothing, with phi and the
+    /// lipid area density carried by the relative motion (surface/mesh_motion.h); a fixed volume
+    /// restored; F^{m+1}. At k_BT = 0 in two moves, the normal one first: its energy is the
+    /// physical step's (physical_energy), the smoothing's change is mesh_motion_energy.
     void move_mesh(double tau, const State &before);
+    /// -sum_i gamma_i (target_i - a_i): the energy the step's restoration of the vertex-area
+    /// defect costs against the surface pressure (the current `pressure`), to first order.
+    double area_work_of_step(const Vector &target, const Vector &areas_before) const;
+    /// Moves the surface by `mesh` and carries phi along the lipids' relative displacement
+    /// `relative` (and the solenoidal `stream`, of largest displacement `stream_displacement`),
+    /// in substeps below max_transport_cells; the reference areas keep the compression `density`.
+    void carry_along(const Vector &mesh, const Vector &relative, const Vector &density, const Vector *stream,
+                     double stream_displacement);
     /// The geometry and the energy of the current surface and phi.
     void update_geometry();
     /// Substeps of the transport of a step whose lipids move by `relative` (and the solenoidal
@@ -298,6 +307,8 @@ namespace Membrane
     /// The work integral p dV done on the membrane by the volume term: in the trial step,
     /// and summed over the run (F - pressure_work never increases).
     double step_pressure_work = 0, pressure_work = 0;
+    /// Mesh motion = ale: the work of the surface pressure restoring the area defect (area_work_of_step).
+    double step_area_work = 0;
     double trial_end_time = 0; ///< t_{m+1} of the trial step
     unsigned int area_projections = 0, tangential_area_moves = 0; ///< of the last step
     /// Accuracy control: the physical increments of the trial step and of the last

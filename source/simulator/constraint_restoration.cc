@@ -194,6 +194,17 @@ namespace Membrane
     reference_areas = carried;
   }
 
+  double Simulator::area_work_of_step(const Vector &target, const Vector &areas_before) const
+  {
+    // The surface pressure gamma is the multiplier of the vertex-area rows (div_s W, chi_i) =
+    // target_i - a_i: restoring the defect changes F by about -sum_i gamma_i (target_i - a_i).
+    const LocalValues gamma(pressure), restored(target), area(areas_before);
+    double            work = 0;
+    for (const auto i : target.locally_owned_elements())
+      work -= gamma[i] * (restored[i] - area[i]);
+    return Utilities::MPI::sum(work, communicator);
+  }
+
   bool Simulator::volume_constrained() const
   {
     return topology->encloses_volume() && parameters.volume.constraint != "free";

@@ -1,6 +1,7 @@
 // Stage 4 of a step: the mesh. Lagrangian: grid control, the tangential smoothing of X~ with the
 // ALE remap of phi (MODEL.md section 4), kept when the step as a whole descends (always at
-// k_BT > 0). ALE: the physical step's energy at X~, then the mesh motion of surface/mesh_motion.h.
+// k_BT > 0). ALE: the mesh motion of surface/mesh_motion.h, at k_BT = 0 in two moves (the normal
+// one, whose energy is the physical step's, then the smoothing).
 // Then the geometry and energy F^{m+1}. Part of Simulator.
 #include <membrane/simulator.h>
 #include <membrane/solvers/vector_access.h>
@@ -88,14 +89,24 @@ namespace Membrane
     return static_cast<unsigned int>(std::max(1.0, std::ceil(cells / max_transport_cells)));
   }
 
+  void Simulator::carry_along(const Vector &mesh, const Vector &relative, const Vector &density,
+                              const Vector *stream, const double stream_displacement)
+  {
+    // The explicit transport is accurate (and Lax-Wendroff stable) for relative moves below a cell;
+    // at a temperature the lipids' random walk moves them further, so the move is split into
+    // substeps of at most half a cell of the finest mesh, each from where the last one left.
+    const unsigned int substeps = transport_substeps(relative, stream_displacement);
+    Vector             mesh_substep = mesh, relative_substep = relative;
+    mesh_substep *= 1.0 / substeps;
+    relative_substep *= 1.0 / substeps;
+    for (unsigned int k = 0; k < substeps; ++k)
+      move_and_transport(surface, mesh_substep, relative_substep, {&phi}, stream, 1.0 / substeps);
+    // The compression ratio a_ref / a stays with the vertex through the move.
+    carry_reference_areas(density);
+  }
+
   void Simulator::move_mesh(const double tau, const State &before)
   {
-    // The physical step is X^m -> X~ = X^m + W with phi~ carried by the lipids: its energy is
-    // what the step control judges (at k_BT = 0: at a temperature no energy test applies, and
-    // the material configuration X~ is no mesh: its cells fold).
-    const bool judged = !parameters.thermal.active();
-    if (judged)
-      update_geometry();
     {
       TimerOutput::Scope scope(timer, "mesh motion");
       const FieldSpace  &vectors  = surface.vector_space();
@@ -105,26 +116,46 @@ namespace Membrane
       // Back on Gamma^m: the mesh moves by the normal part of W plus the smoothing, at the
       // normals of Gamma^m that the shape step used (before.geometry).
       surface.set_displacement(before.displacement);
-      Vector       mesh   = ale_mesh_increment(surface, vectors.ghosted_copy(material), before.geometry.normal,
-                                               parameters.grid_control_sweeps_of_step(tau),
-                                               parameters.grid_control_weight_of_step(tau));
-      Vector       relative = mesh; // d = W^mesh - W
-      relative -= material;
-      // phi, carried from Gamma^m. The explicit transport is accurate (and Lax-Wendroff stable) for relative moves below a cell; at a
-      // temperature the lipids' random walk moves them further, so the move is split into
-      // substeps of at most half a cell of the finest mesh, each from where the last one left.
-      // At a temperature the lipids also move by the solenoidal noise (split_noise).
-      const Vector      *stream     = split_noise ? &tangential_noise.stream : nullptr;
-      const unsigned int substeps   = transport_substeps(relative, stream ? tangential_noise.max_stream_displacement : 0);
-      mesh *= 1.0 / substeps;
-      relative *= 1.0 / substeps;
       // The lipids of vertex i cover a^m_i + (div_s W, chi_i) after the physical step (the
-      // incompressibility is a constraint on the velocity: its linear form); that compression
-      // ratio a_ref / a stays with the vertex through the mesh motion, as through grid control.
+      // incompressibility is a constraint on the velocity: its linear form).
       const Vector density = material_area_ratio(material);
-      for (unsigned int k = 0; k < substeps; ++k)
-        move_and_transport(surface, mesh, relative, {&phi}, stream, 1.0 / substeps);
-      carry_reference_areas(density);
+      // At a temperature the lipids also move by the solenoidal noise (split_noise).
+      const Vector *stream              = split_noise ? &tangential_noise.stream : nullptr;
+      const double  stream_displacement = stream ? tangential_noise.max_stream_displacement : 0;
+      const unsigned int sweeps = parameters.grid_control_sweeps_of_step(tau);
+      const double       weight = parameters.grid_control_weight_of_step(tau);
+      if (parameters.thermal.active())
+        {
+          // At a temperature no energy test applies: one move by W^mesh, phi carried by d = W^mesh - W.
+          const Vector mesh     = ale_mesh_increment(surface, vectors.ghosted_copy(material), before.geometry.normal,
+                                                     sweeps, weight);
+          Vector       relative = mesh;
+          relative -= material;
+          carry_along(mesh, relative, density, stream, stream_displacement);
+        }
+      else
+        {
+          // The physical step is judged on the shape it gives: Gamma^m moved by the normal part
+          // of W, phi carried by the lipids' tangential motion (d = (W . nu) nu - W). Where the
+          // vertices sit on that shape is the mesh motion's: judged on X^m + W, the step would
+          // also count what moving the vertices along W's tangential part changes in the
+          // discrete energy, an O(h^2) error that the smoothing then takes back, and which near
+          // an equilibrium outweighs the step's descent at any tau (the step control stalled).
+          const Vector normal   = normal_part(surface, vectors.ghosted_copy(material), before.geometry.normal);
+          Vector       relative = normal;
+          relative -= material;
+          carry_along(normal, relative, density, nullptr, 0);
+          {
+            TimerOutput::Scope inner(timer, "geometry");
+            physical_energy = compute_energy(surface, compute_geometry(surface), phi, parameters.material).total();
+          }
+          // The smoothing alone, measured where the normal motion put the vertices; phi stays
+          // with the lipids (d = s).
+          const Vector ratio     = area_ratio();
+          const Vector smoothing = ale_mesh_increment(surface, vectors.ghosted_copy(vectors.make_owned()), vectors.ghosted_copy(
+                                                        compute_vertex_normals(surface)), sweeps, weight);
+          carry_along(smoothing, smoothing, ratio, nullptr, 0);
+        }
       // What the step control bounds and compares is the motion of the shape, not of the lipids.
       step_increment = surface.displacement();
       step_increment -= before.displacement;
@@ -132,10 +163,8 @@ namespace Membrane
       if (volume_fixed())
         restore_volume();
     }
-    if (judged)
-      physical_energy = energy.total();
     update_geometry();
-    if (!judged)
+    if (parameters.thermal.active())
       physical_energy = energy.total();
     mesh_motion_energy = energy.total() - physical_energy;
   }

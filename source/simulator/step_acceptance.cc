@@ -28,8 +28,10 @@ namespace Membrane
     // A moving volume target or a prescribed pressure does work p dV on the membrane:
     // F - integral p dV, not F, is what the constrained gradient flow decreases.
     // With Mesh motion = ale the physical step alone: the mesh motion's change is a discretization
-    // error, recorded as mesh_motion_energy.
-    const double rise = physical_energy - energy_before - step_pressure_work;
+    // error, recorded as mesh_motion_energy. So is the area the smoothing cuts off the curved
+    // surface: the next step restores it against the surface pressure, work -(gamma, a_ref - a)
+    // that the step control counts as it counts p dV (step_area_work; 0 with the Lagrangian mesh).
+    const double rise = physical_energy - energy_before - step_pressure_work - step_area_work;
     // At a temperature the energy fluctuates: a rise is no sign of a failed step.
     if (!parameters.thermal.active() && rise > parameters.energy_tolerance * std::max(std::abs(energy_before), 1e-300))
       return {"energy_rise", "the energy would rise by " + format(rise)};

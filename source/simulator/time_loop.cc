@@ -210,6 +210,7 @@ namespace Membrane
     max_increment                = 0;
     remap_correction             = 0;
     step_pressure_work           = 0;
+    step_area_work               = 0;
     mesh_motion_energy           = 0;
     Rejection why;
     try
@@ -243,6 +244,7 @@ namespace Membrane
               {
                 pressure = gamma;
                 phi      = phi_new; // integral phi ds of Gamma^m, carried exactly by the transport
+                step_area_work = area_work_of_step(target, areas_before);
                 move_mesh(tau_trial, before);
                 step_pressure_work = pressure_work_of_step(volume_before, pressure_before);
               }
