@@ -40,6 +40,13 @@ subsection Output
   set Write VTU = false
 end
 )";
+  // The smooth initial shape of the single-phase relaxations: three cosine modes.
+  const std::string cosine_shape = R"(
+subsection Initial shape
+  set Shape = cosine modes
+  set Cosine modes = 0.06 1 1; 0.06 1 -1; 0.01 2 1
+end
+)";
 
   /// Column of the statistics as a vector.
   std::vector<double> column(const Statistics &stats, const std::string &name)
@@ -106,13 +113,9 @@ end
 TEST(Shape, HomogeneousMembraneRelaxesWithMonotoneEnergyAndUniformPressure)
 {
   const std::string dir = std::filesystem::temp_directory_path() / "membrane_relax";
-  const Parameters  parameters = make_parameters(homogeneous + R"(
+  const Parameters  parameters = make_parameters(homogeneous + cosine_shape + R"(
 subsection Mesh
   set Cells per side = 16
-end
-subsection Initial shape
-  set Shape = cosine modes
-  set Cosine modes = 0.06 1 1; 0.06 1 -1; 0.01 2 1
 end
 subsection Time stepping
   set End time = 0.2
@@ -150,13 +153,9 @@ TEST(Shape, SinglePhaseRelaxationReachesEquilibriumWithGridControl)
 {
   const std::string dir      = std::filesystem::temp_directory_path() / "membrane_single_phase_equilibrium";
   const auto        relaxing = [&](const double equilibrium_time, const std::string &directory) {
-    return make_parameters(homogeneous + R"(
+    return make_parameters(homogeneous + cosine_shape + R"(
 subsection Mesh
   set Cells per side = 16
-end
-subsection Initial shape
-  set Shape = cosine modes
-  set Cosine modes = 0.06 1 1; 0.06 1 -1; 0.01 2 1
 end
 subsection Shape
   set Grid control weight = 0.1
@@ -208,13 +207,9 @@ TEST(Shape, SinglePhaseRelaxationReachesEquilibriumWithTheAleMesh)
   const auto relax = [&](const double first_tau) {
     const std::string dir = std::filesystem::temp_directory_path() /
                             ("membrane_single_phase_ale_" + std::to_string(first_tau));
-    const Parameters parameters = make_parameters(homogeneous + R"(
+    const Parameters parameters = make_parameters(homogeneous + cosine_shape + R"(
 subsection Mesh
   set Cells per side = 8
-end
-subsection Initial shape
-  set Shape = cosine modes
-  set Cosine modes = 0.06 1 1; 0.06 1 -1; 0.01 2 1
 end
 subsection Shape
   set Mesh motion = ale
