@@ -119,11 +119,6 @@ namespace Membrane
                            "MUMPS factorization and apply only to <Linear solver/Type> = direct; with Type = " +
                            solver.type + " set Low-rank tolerance = 0 and Out of core = false"));
 
-    AssertThrow(parameters.mesh_motion == MeshMotion::lagrangian || parameters.shape_options.tangential_area_iterations == 0,
-                ExcMessage("Entry <Shape/Tangential area correction> moves the material vertices of a Lagrangian "
-                           "mesh; with <Shape/Mesh motion> = ale the vertices are not material points: set it to 0 "
-                           "(the ALE step projects the linearized vertex areas with <Shape/Area projections>)"));
-
     AssertThrow(solver.type != "block" || parameters.shape_options.curvature_mass == CurvatureMass::consistent,
                 ExcMessage("Entry <Linear solver/Type> = block preconditions the seven-field shape system: it needs "
                            "<Shape/Curvature mass> = consistent (got lumped; use Type = direct with it)"));

@@ -60,7 +60,9 @@ namespace Membrane
                       "vertex-area error, else retried with more damping; they stop at 1e-9). It removes the "
                       "defects that the pressure-stabilized area row cannot, inside locally refined patches and "
                       "on curved vesicles (7.3: area_error below 1e-6, about 11 % more run time; phase-field "
-                      "vesicles: about 1e-5 instead of 1e-3 to 8e-2). 0: none. Needs Correct area = true.");
+                      "vesicles: about 1e-5 instead of 1e-3 to 8e-2). With Mesh motion = ale the moves act on the material "
+                      "configuration X^m + W, which the mesh does not follow: a tangential flow of the lipids that "
+                      "carries phi. 0: none. Needs Correct area = true.");
     prm.declare_entry("Correct mass", "true", Patterns::Bool(),
                       "Restore integral phi ds after each shape step by a constant shift of phi (reported as "
                       "shape_mass_correction). phi rides on the vertices, and the local area error left by the "

@@ -153,12 +153,12 @@ namespace Membrane
     /// Projections of X~ back onto the area target and a fixed volume (same operator), the
     /// tangential area correction; gamma gains their pressures and becomes `pressure`.
     bool   restore_areas_and_volume(double tau, const Vector &target, Vector &gamma);
-    /// Mesh motion = ale: the same projections onto the area target, with the vertex areas of the
-    /// material configuration taken to first order on Gamma^m, a^m + (div_s W, chi_i) (the
-    /// constraint on the velocity; X~ is no mesh at a temperature). The volume is restored
-    /// after the mesh motion instead. `displacement_before` is X^m's.
-    bool   restore_material_areas(double tau, const Vector &areas_before, const Vector &target, Vector &gamma,
-                                  const Vector &displacement_before);
+    /// Mesh motion = ale: the same projections onto the area target, with the operator of
+    /// Gamma^m and the vertex areas of the material configuration X~ = X^m + W (which the
+    /// mesh does not follow), then the tangential area correction on X~. The volume is
+    /// restored after the mesh motion instead. `displacement_before` is X^m's; the surface is
+    /// left at X~.
+    bool   restore_material_areas(double tau, const Vector &target, Vector &gamma, const Vector &displacement_before);
     /// phi = phi~ riding on the moved vertices, with integral phi ds restored by a constant.
     void   restore_mass(const Vector &phi_new);
     /// a_ref,i / a_i as a ghosted nodal field; carry_reference_areas() is its inverse
@@ -202,9 +202,12 @@ namespace Membrane
     /// noise, `solenoidal` at most) against the mesh: each at most max_transport_cells cells of the
     /// finest mesh.
     unsigned int           transport_substeps(const Vector &relative, double solenoidal) const;
-    /// a_ref,i / (a_i + (div_s W, chi_i)) on the current surface Gamma^m: the compression of
-    /// the lipids after the material displacement W (owned, vector space); ghosted.
-    Vector                 material_area_ratio(const Vector &increment) const;
+    /// a_ref,i / a_i(X~): the compression of the lipids after the material displacement, from
+    /// the vertex areas of the material configuration X~ (owned, scalar space); ghosted.
+    Vector                 material_area_ratio(const Vector &areas) const;
+    /// The vertex areas of X~ = X^m + `increment` (owned vector space; `displacement_before`
+    /// is X^m's). Evaluated on the displaced mesh, which is left at X^m again.
+    Vector                 material_areas(const Vector &displacement_before, const Vector &increment);
     static constexpr double max_transport_cells = 0.5;
 
     // Stage 5, acceptance and step control (step_acceptance.cc).

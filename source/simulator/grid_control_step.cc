@@ -67,16 +67,14 @@ namespace Membrane
     energy   = compute_energy(surface, geometry, phi, parameters.material);
   }
 
-  Vector Simulator::material_area_ratio(const Vector &increment) const
+  Vector Simulator::material_area_ratio(const Vector &areas) const
   {
-    const Vector change = vertex_area_change(surface, surface.vector_space().ghosted_copy(increment));
-    const Vector areas  = vertex_areas(surface);
-    Vector       ratio  = surface.scalar_space().make_owned();
+    Vector ratio = surface.scalar_space().make_owned();
     {
-      const LocalValues area(areas), grown(change), reference(reference_areas);
+      const LocalValues area(areas), reference(reference_areas);
       OwnedValues       values(ratio);
       for (const auto i : ratio.locally_owned_elements())
-        values[i] = area[i] + grown[i] > 0 ? reference[i] / (area[i] + grown[i]) : 1.0;
+        values[i] = area[i] > 0 ? reference[i] / area[i] : 1.0;
     }
     ratio.compress(VectorOperation::insert);
     surface.scalar_space().constraints().distribute(ratio);
@@ -116,9 +114,8 @@ namespace Membrane
       // Back on Gamma^m: the mesh moves by the normal part of W plus the smoothing, at the
       // normals of Gamma^m that the shape step used (before.geometry).
       surface.set_displacement(before.displacement);
-      // The lipids of vertex i cover a^m_i + (div_s W, chi_i) after the physical step (the
-      // incompressibility is a constraint on the velocity: its linear form).
-      const Vector density = material_area_ratio(material);
+      // The lipids of vertex i cover its area on X~ = X^m + W after the physical step.
+      const Vector density = material_area_ratio(material_areas(before.displacement, material));
       // At a temperature the lipids also move by the solenoidal noise (split_noise).
       const Vector *stream              = split_noise ? &tangential_noise.stream : nullptr;
       const double  stream_displacement = stream ? tangential_noise.max_stream_displacement : 0;

@@ -237,7 +237,7 @@ namespace Membrane
             // The ALE scheme restores nothing on the material configuration X~, which it never
             // builds as a mesh: the constraints hold on the moved mesh (grid_control_step.cc).
             if (!shape_step(tau_trial, areas_before, target, gamma) ||
-                !(ale ? restore_material_areas(tau_trial, areas_before, target, gamma, before.displacement) :
+                !(ale ? restore_material_areas(tau_trial, target, gamma, before.displacement) :
                         restore_areas_and_volume(tau_trial, target, gamma)))
               why = {"non_finite", "the shape solve gave non-finite values"};
             else if (ale)

@@ -57,35 +57,6 @@ namespace Membrane
     return mesh_increment;
   }
 
-  Vector vertex_area_change(const Surface &surface, const Vector &increment)
-  {
-    const FieldSpace       &scalars = surface.scalar_space();
-    const FieldSpace       &vectors = surface.vector_space();
-    const QGauss<dim>       quadrature(2);
-    FEValues<dim, spacedim> fe_values(surface.mapping(), scalars.fe(), quadrature, update_values | update_JxW_values);
-    FEValues<dim, spacedim> vector_values(surface.mapping(), vectors.fe(), quadrature, update_gradients);
-    const FEValuesExtractors::Vector     all_components(0);
-    std::vector<double>                  divergence(quadrature.size());
-    dealii::Vector<double>               local(scalars.fe().n_dofs_per_cell());
-    std::vector<types::global_dof_index> dof_indices(scalars.fe().n_dofs_per_cell());
-    Vector                               change = scalars.make_owned();
-    for (const auto &cell : scalars.dof_handler().active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          vector_values.reinit(vectors.cell(cell));
-          vector_values[all_components].get_function_divergences(increment, divergence);
-          local = 0;
-          for (const unsigned int q : fe_values.quadrature_point_indices())
-            for (unsigned int i = 0; i < local.size(); ++i)
-              local(i) += divergence[q] * fe_values.shape_value(i, q) * fe_values.JxW(q);
-          cell->get_dof_indices(dof_indices);
-          scalars.constraints().distribute_local_to_global(local, dof_indices, change);
-        }
-    change.compress(VectorOperation::add);
-    return change;
-  }
-
   Vector transport_flux(const Surface &surface, const Vector &relative, const Vector &phi, const Vector *stream,
                         const double stream_scale)
   {

@@ -45,10 +45,6 @@ namespace Membrane
   Vector ale_mesh_increment(Surface &surface, const Vector &increment, const Vector &normal, unsigned int sweeps,
                             double weight);
 
-  /// (div_s W, chi_i) on the current surface: the linear change of the vertex areas under the
-  /// displacement W (ghosted, vector space); owned, scalar space.
-  Vector vertex_area_change(const Surface &surface, const Vector &increment);
-
   /// The ALE transport flux F_i = (f d, grad_s chi_i) + 1/2 (d . grad_s f, d . grad_s chi_i) on
   /// the current surface (owned, scalar space; sums to zero). `relative` and `f` ghosted. A
   /// `stream` psi (ghosted, scalar space) adds the lipids' solenoidal displacement
