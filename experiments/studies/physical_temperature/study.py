@@ -77,7 +77,14 @@ def run(name, exe):
 
 
 def analyze(plot):
-    results = {"steps": STEPS, "tau": TAU, "settings": ALE, "limits": LIMITS, "runs": {}}
+    # Runs measured before (another session, another code version: each entry names its own)
+    # are kept until their directory holds a finished run again.
+    try:
+        with open(os.path.join(HERE, "results.json")) as f:
+            kept = json.load(f)["runs"]
+    except FileNotFoundError:
+        kept = {}
+    results = {"steps": STEPS, "tau": TAU, "settings": ALE, "limits": LIMITS, "runs": kept}
     print("| run | k_BT | steps | failed | smallest corner sine | largest area error | mean area error | "
           "mass drift | s/step |")
     print("|---|---|---|---|---|---|---|---|---|")
