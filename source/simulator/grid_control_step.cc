@@ -111,11 +111,12 @@ namespace Membrane
       Vector             material = vectors.make_owned(); // W
       material                    = surface.displacement();
       material -= before.displacement;
+      // The lipids of vertex i cover its area on X~ = X^m + W after the physical step (the
+      // surface is still at X~, where restore_material_areas left it).
+      const Vector density = material_area_ratio(vertex_areas(surface));
       // Back on Gamma^m: the mesh moves by the normal part of W plus the smoothing, at the
       // normals of Gamma^m that the shape step used (before.geometry).
       surface.set_displacement(before.displacement);
-      // The lipids of vertex i cover its area on X~ = X^m + W after the physical step.
-      const Vector density = material_area_ratio(material_areas(before.displacement, material));
       // At a temperature the lipids also move by the solenoidal noise (split_noise).
       const Vector *stream              = split_noise ? &tangential_noise.stream : nullptr;
       const double  stream_displacement = stream ? tangential_noise.max_stream_displacement : 0;
