@@ -15,12 +15,12 @@ Usage: /usr/bin/python3 benchmarks/mesh_motion_cost.py [--exe build/membrane-flo
 """
 import argparse
 import json
-import re
 import subprocess
 import tempfile
 from pathlib import Path
 
 from membrane_flow import launch  # the package on the path after ./scripts/setup.sh (docs/python.md)
+from membrane_flow.run import read_timer_table
 
 PHASES = ('shape assembly', 'shape solve', 'Cahn-Hilliard assembly', 'Cahn-Hilliard solve', 'area projection',
           'mesh motion', 'grid control', 'geometry', 'statistics')
@@ -33,13 +33,8 @@ def timed_run(exe, prm, sets, directory):
     code, _ = launch.run([exe, *args], env=launch.environment(), stdout=subprocess.DEVNULL)
     if code != 0:
         raise SystemExit(f'membrane-flow failed (exit {code}) on {prm} with {sets}')
-    log = Path(directory, 'log.txt').read_text()
-    table = log[log.rindex('Total wallclock time elapsed'):]
-    total = float(re.search(r'Total wallclock time elapsed\s*\|\s*([\d.e+-]+)s', table).group(1))
-    parts = {}
-    for name in PHASES:
-        match = re.search(r'\|\s*' + re.escape(name) + r'\s*\|\s*\d+\s*\|\s*([\d.e+-]+)s', table)
-        parts[name] = float(match.group(1)) if match else 0.0
+    sections, total = read_timer_table(Path(directory, 'log.txt').read_text())
+    parts = {name: sections.get(name, 0.0) for name in PHASES}
     summary = json.loads(Path(directory, 'summary.json').read_text())
     return {'wall': total, 'steps': summary['steps'], 'rejected': summary['rejected_steps'],
             'energy': summary['energy'], 'parts': parts}

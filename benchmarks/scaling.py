@@ -30,12 +30,14 @@ import glob
 import json
 import math
 import os
-import re
 import shutil
 import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, 'python'))
+from membrane_flow.run import read_timer_table  # noqa: E402
+
 PHASES = {
     'assembly': ['Cahn-Hilliard assembly', 'shape assembly'],
     'solves': ['Cahn-Hilliard solve', 'shape solve'],
@@ -44,17 +46,6 @@ PHASES = {
     'statistics': ['statistics'],
 }
 SETUP = ['setup', 'initial state']
-
-
-def timer_table(log):
-    """{section: slowest rank's seconds} and the total wall time, from deal.II's TimerOutput table."""
-    sections = {}
-    for line in log.splitlines():
-        cells = [c.strip() for c in line.strip().strip('|').split('|')]
-        if len(cells) == 5 and cells[1].isdigit():
-            sections[cells[0]] = float(cells[4].split()[0].rstrip('s'))
-    total = float(re.search(r'Total wallclock time elapsed\s*\|\s*([\d.e+-]+)s', log).group(1))
-    return sections, total
 
 
 # The linear-solver variants: entries of the input file (Linear solver/..., Shape/Curvature mass).
@@ -97,7 +88,7 @@ def run_case(exe, n, ranks, solver, steps, directory):
         errors = [line for line in result.stdout.splitlines() if line.startswith('Error')]
         case['failed'] = errors[-1] if errors else f'exit code {result.returncode}'
         return case
-    sections, total = timer_table(result.stdout)
+    sections, total = read_timer_table(result.stdout)
     with open(os.path.join(directory, 'run', 'summary.json')) as f:
         summary = json.load(f)
     accepted = summary['steps']

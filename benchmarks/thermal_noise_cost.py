@@ -9,12 +9,12 @@ from the run's timer table. Repeats each run and keeps the fastest, against mach
 Usage: thermal_noise_cost.py [--exe PATH] [--prm FILE] [--sizes 32,64] [--steps 40] [--repeats 3]
 """
 import argparse
-import re
 import subprocess
 import tempfile
 from pathlib import Path
 
 from membrane_flow import launch  # the package on the path after ./scripts/setup.sh (docs/python.md)
+from membrane_flow.run import read_timer_table
 
 SECTIONS = ('Cahn-Hilliard assembly', 'shape assembly')
 
@@ -28,13 +28,8 @@ def timed_run(exe, prm, size, steps, temperature, directory):
     code, _ = launch.run([exe, *args], env=launch.environment(), stdout=subprocess.DEVNULL)
     if code != 0:
         raise SystemExit(f'membrane-flow failed (exit {code}) at {size} cells per side, Temperature = {temperature}')
-    log = Path(directory, 'log.txt').read_text()
-    table = log[log.rindex('Total wallclock time elapsed'):]
-    total = float(re.search(r'Total wallclock time elapsed\s*\|\s*([\d.e+-]+)s', table).group(1))
-    parts = {}
-    for name in SECTIONS:
-        match = re.search(r'\|\s*' + re.escape(name) + r'\s*\|\s*\d+\s*\|\s*([\d.e+-]+)s', table)
-        parts[name] = float(match.group(1)) if match else 0.0
+    sections, total = read_timer_table(Path(directory, 'log.txt').read_text())
+    parts = {name: sections.get(name, 0.0) for name in SECTIONS}
     return total / steps, {k: v / steps for k, v in parts.items()}
 
 

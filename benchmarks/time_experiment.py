@@ -11,21 +11,19 @@ Example: benchmarks/time_experiment.py build/membrane-flow experiments/7.3-buddi
              --set "Mesh/Maximum refinement level=0"
 """
 import json
-import re
+import os
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "python"))
+from membrane_flow.run import read_timer_table  # noqa: E402
 
 exe, prm = sys.argv[1], sys.argv[2]
 extra = sys.argv[3:]
 out = extra.pop(0) if extra and not extra[0].startswith("--") else "results/benchmark"
 log = subprocess.run([exe, "--overwrite", "--set", "Output/Write VTU=false", "--set", f"Output/Directory={out}", *extra, prm],
                      check=True, capture_output=True, text=True).stdout
-sections = {}
-for line in log.splitlines():
-    m = re.match(r"\|\s*([A-Za-z -]+?)\s*\|\s*(\d+)\s*\|\s*([\d.e+-]+)s", line)
-    if m and m.group(1) not in ("Section", "Total wallclock time elapsed"):
-        sections[m.group(1)] = float(m.group(3))
-total = float(re.search(r"Total wallclock time elapsed\s*\|\s*([\d.e+-]+)s", log).group(1))
+sections, total = read_timer_table(log)
 with open(f"{out}/summary.json") as f:
     summary = json.load(f)
 steps = summary["steps"]

@@ -1,7 +1,7 @@
 """Reading what a run of membrane-flow wrote into its output directory: the one reader of
-statistics.txt, summary.json, run_info.json, parameters.prm, checkpoints' times, the PVD
-series and its VTU files, used by the workflow, the studies, the pictures and the docs
-generators of the package.
+statistics.txt, summary.json, run_info.json, parameters.prm, checkpoints' times, the timer
+table of log.txt, the PVD series and its VTU files, used by the workflow, the studies, the
+pictures, the benchmarks and the docs generators of the package.
 
 Pure Python (numpy; VTK's Python module for the fields of a snapshot): it needs neither
 the compiled part of membrane_flow nor MPI.
@@ -15,6 +15,7 @@ the compiled part of membrane_flow nor MPI.
 """
 import json
 import os
+import re
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -84,6 +85,19 @@ def checkpoint_time(path):
             if line.startswith('parameters'):
                 break
     raise ValueError(f'{path} is not a checkpoint of membrane-flow (no time)')
+
+
+def read_timer_table(log):
+    """({section: seconds of the slowest rank}, total wall seconds) from the last TimerOutput table
+    in the text of a run's log (the table a run prints when it stops)."""
+    table = log[log.rindex('Total wallclock time elapsed'):]
+    sections = {}
+    for line in table.splitlines():
+        cells = [c.strip() for c in line.strip().strip('|').split('|')]
+        if len(cells) == 5 and cells[1].isdigit():
+            sections[cells[0]] = float(cells[4].split()[0].rstrip('s'))
+    total = float(re.search(r'Total wallclock time elapsed\s*\|\s*([\d.e+-]+)s', table).group(1))
+    return sections, total
 
 
 def parse_prm(text):
