@@ -28,7 +28,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.join(HERE, "..", "..", "..")
 sys.path.insert(0, os.path.join(ROOT, "python"))
 from membrane_flow import launch  # noqa: E402
-from membrane_flow.run import load_statistics  # noqa: E402
+from membrane_flow.run import load_parameters, load_statistics  # noqa: E402
 
 OUT = "results/studies/physical_temperature"
 STEPS = 10000
@@ -51,6 +51,7 @@ CELLS = {"vesicle16": ("vesicle", 16), "vesicle32": ("vesicle", 32), "patch32": 
          "patch64": ("patch", 64)}
 RUNS = {f"{mesh}-kT{d}": (mesh, d) for mesh in CELLS for d in (20, 10)}
 LIMITS = {"min_corner_sine": 0.5, "area_error": 1e-2}
+SHAPE_ENTRIES = ("Pressure stabilization", "Area projections", "Tangential area correction", "Area relaxation time")
 
 
 def finished(name):
@@ -116,6 +117,8 @@ def analyze(plot):
             "wall_seconds_per_step": float(summary["wall_seconds"] / max(1, steps)),
             "area_error_per_tenth": [float(c["area_error"][b].max()) for b in blocks if len(b)],
             "code_version": summary.get("code_version"),
+            # the entries that decide the local area error (entries of older runs lack them)
+            "shape_settings": {k: load_parameters(f"{OUT}/{name}")[f"Shape/{k}"] for k in SHAPE_ENTRIES},
         }
         r["within_limits"] = bool(r["complete"] and r["failed_steps"] == 0
                                   and r["smallest_corner_sine"] >= LIMITS["min_corner_sine"]
