@@ -202,9 +202,6 @@ namespace Membrane
     /// noise, `solenoidal` at most) against the mesh: each at most max_transport_cells cells of the
     /// finest mesh.
     unsigned int           transport_substeps(const Vector &relative, double solenoidal) const;
-    /// a_ref,i / a_i(X~): the compression of the lipids after the material displacement, from
-    /// the vertex areas of the material configuration X~ (owned, scalar space); ghosted.
-    Vector                 material_area_ratio(const Vector &areas) const;
     /// The vertex areas of X~ = X^m + `increment` (owned vector space; `displacement_before`
     /// is X^m's). Evaluated on the displaced mesh, which is left at X^m again.
     Vector                 material_areas(const Vector &displacement_before, const Vector &increment);

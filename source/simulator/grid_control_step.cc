@@ -67,20 +67,6 @@ namespace Membrane
     energy   = compute_energy(surface, geometry, phi, parameters.material);
   }
 
-  Vector Simulator::material_area_ratio(const Vector &areas) const
-  {
-    Vector ratio = surface.scalar_space().make_owned();
-    {
-      const LocalValues area(areas), reference(reference_areas);
-      OwnedValues       values(ratio);
-      for (const auto i : ratio.locally_owned_elements())
-        values[i] = area[i] > 0 ? reference[i] / area[i] : 1.0;
-    }
-    ratio.compress(VectorOperation::insert);
-    surface.scalar_space().constraints().distribute(ratio);
-    return surface.scalar_space().ghosted_copy(ratio);
-  }
-
   unsigned int Simulator::transport_substeps(const Vector &relative, const double solenoidal) const
   {
     const double cells = (relative.linfty_norm() + solenoidal) / reference_cell_size();
@@ -111,9 +97,10 @@ namespace Membrane
       Vector             material = vectors.make_owned(); // W
       material                    = surface.displacement();
       material -= before.displacement;
-      // The lipids of vertex i cover its area on X~ = X^m + W after the physical step (the
-      // surface is still at X~, where restore_material_areas left it).
-      const Vector density = material_area_ratio(vertex_areas(surface));
+      // The lipids of vertex i cover its area on X~ = X^m + W after the physical step: their
+      // compression a_ref,i / a_i(X~), taken while the surface is still at X~, where
+      // restore_material_areas left it.
+      const Vector density = area_ratio();
       // Back on Gamma^m: the mesh moves by the normal part of W plus the smoothing, at the
       // normals of Gamma^m that the shape step used (before.geometry).
       surface.set_displacement(before.displacement);
