@@ -74,7 +74,9 @@ namespace Membrane
       prm.declare_entry("Energy tolerance", "1e-10", Patterns::Double(0, 1),
                         "Largest accepted relative rise of the free energy in one step (round-off allowance).");
       prm.declare_entry("Equilibrium rate", "0", Patterns::Double(0, max_double),
-                        "Stop at equilibrium when |F^{m+1} - F^m| / (tau |F^m|) falls below this (1/time; 0: never).");
+                        "Stop at equilibrium when the physical step's relative energy rate |F^{m+1} - F^m - W| / (tau |F^m|) "
+                        "falls below this (1/time; 0: never); W the work of the volume and area constraints. With "
+                        "Shape/Mesh motion = ale, F^{m+1} is the energy before the smoothing (docs/model.md).");
       prm.declare_entry("Equilibrium time", "0", Patterns::Double(0, max_double),
                         "The equilibrium stop needs the energy rate below Equilibrium rate in every accepted step "
                         "for at least this much time (0: one step suffices). After a parameter change on resume, "

@@ -148,12 +148,20 @@ namespace Membrane
                   false);
     // The rate must stay below the threshold for Equilibrium time (from the step whose start it
     // first held at): one slow step after a change of a parameter is not yet a plateau.
-    if (parameters.equilibrium_rate > 0 && change / trial < parameters.equilibrium_rate)
+    // It is the physical step's rate, the one the step control judges (step_acceptance.cc): with
+    // Mesh motion = ale the smoothing's change of the discrete energy (mesh_motion_energy) is a
+    // discretization error, and on a fine mesh the fixed weight per step takes more steps to bring
+    // the mesh to its fixed point than the shape takes to settle; with the Lagrangian mesh the
+    // physical step is the whole step (physical_energy = F^{m+1}, no area work).
+    const double physical_change =
+      std::abs(physical_energy - energy_before - step_pressure_work - step_area_work) /
+      std::max(std::abs(energy_before), 1e-300);
+    if (parameters.equilibrium_rate > 0 && physical_change / trial < parameters.equilibrium_rate)
       {
         if (plateau_since < 0)
           plateau_since = time - trial;
         if (time - plateau_since >= parameters.equilibrium_time * (1 - 1e-12))
-          return stop("equilibrium: relative energy rate " + format(change / trial) + " < " +
+          return stop("equilibrium: relative energy rate " + format(physical_change / trial) + " < " +
                         format(parameters.equilibrium_rate) +
                         (parameters.equilibrium_time > 0 ? " for " + format(time - plateau_since) : std::string()),
                       false);
