@@ -148,8 +148,9 @@ namespace Membrane
         stats.set("gauss_map_area", gauss_map_area(surface, geometry.normal));
         // The shape spectrum (analysis/spherical_modes.h): the mean of u_lm^2 over m, which
         // Milner and Safran predict as k_BT / (kappa (l - 1)(l + 2)(l (l + 1) + Sigma R^2 / kappa)).
-        const std::vector<double> shape_power = spherical_mode_powers(surface, 4);
-        for (unsigned int l = 2; l <= 4; ++l)
+        // l <= 6: the two-parameter fit of (kappa, Sigma) needs the modes where bending dominates.
+        const std::vector<double> shape_power = spherical_mode_powers(surface, 6);
+        for (unsigned int l = 2; l <= 6; ++l)
           stats.set("shape_mode_" + std::to_string(l), shape_power[l] / (2 * l + 1));
       }
 

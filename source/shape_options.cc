@@ -47,7 +47,9 @@ namespace Membrane
                       "T_a: a step of length tau restores the fraction min(1, tau / T_a) of the vertex area defect "
                       "a_ref - a (the constraint drift relaxes at the rate 1/T_a). Steps longer than T_a restore it "
                       "whole; shorter ones (a step cut short to land on the end time, a retried step) only in "
-                      "proportion, so that their energy change shrinks with tau. 0: every step restores it whole.");
+                      "proportion, so that their energy change shrinks with tau. At Material/Temperature > 0 the uniform "
+                      "part of the defect (the relative defect of the total area) is restored whole in every step, "
+                      "its variation in proportion. 0: every step restores it whole.");
     prm.declare_entry("Area projections", "1", Patterns::Integer(0, 5),
                       "Projections of each step's result back onto the local area constraint (same operator, one "
                       "back-substitution each); they remove the O(|grad W|^2) error of the linearized constraint "

@@ -4,7 +4,7 @@ k_BT / (A (kappa q^4 + Sigma q^2)), and the spherical-harmonic modes of a quasi-
 vesicle against Milner and Safran, k_BT / (kappa (l - 1)(l + 2)(l (l + 1) + Sigma R^2 / kappa)).
 
 Both read the statistics.txt of a run with a fixed tau (one row per step): the mode columns
-(`height_mode_1`, `height_mode_2` on the patch; `shape_mode_2` .. `shape_mode_4` on a closed
+(`height_mode_1`, `height_mode_2` on the patch; `shape_mode_2` .. `shape_mode_6` on a closed
 surface), `gamma_mean` (the mean area multiplier) and the line-energy density
 G = (gradient_energy + well_energy) / area.
 
@@ -71,7 +71,7 @@ def _sampled(columns, skip, batches):
     if n < 2 * batches:
         raise TooFewSteps(f'{n} steps after the first {skip}: too few for {batches} batches')
     taus = columns['tau'][rows]
-    if taus.max() - taus.min() > 1e-12 * taus.max():
+    if taus.max() - taus.min() > 1e-9 * taus.max():  # the last step lands on the end time to round-off
         raise ValueError('the stationary spectra need a fixed tau (Time stepping/Adaptive = false)')
     tension = columns['gamma_mean'] + (columns['gradient_energy'] + columns['well_energy']) / columns['area']
     return rows, n, taus.mean(), tension[rows]
@@ -123,7 +123,8 @@ def sphere_rates(l, R, kappa, mobility):
 
 
 # Legendre polynomials P_l(c), c = z / |x|, as muparser expressions for sphere_stiffness.
-_LEGENDRE = {2: '(3*c^2-1)/2', 3: '(5*c^3-3*c)/2', 4: '(35*c^4-30*c^2+3)/8'}
+_LEGENDRE = {2: '(3*c^2-1)/2', 3: '(5*c^3-3*c)/2', 4: '(35*c^4-30*c^2+3)/8', 5: '(63*c^5-70*c^3+15*c)/8',
+             6: '(231*c^6-315*c^4+105*c^2-5)/16'}
 
 
 def sphere_stiffness(exe, prm, settings=(), degrees=(2, 3), amplitude=0.01, kappa=1.0):
@@ -187,6 +188,41 @@ def sphere_spectrum(path, kT, kappa=1.0, mobility=1.0, skip=500, batches=20, sta
             mode = continuum
         result['modes'].append(mode)
     return result
+
+
+def sphere_fit(path, kT, mobility=1.0, skip=500, batches=20, degrees=(2, 3, 4, 5, 6), stiffness=None):
+    """The two-parameter fit of Milner and Safran to a closed run's spectrum: kappa and the
+    tension Sigma such that shape_mode_l = k_BT / (K_l (1 + (lambda_b - mu) tau / 2)) for the
+    given degrees, K_l = kappa s_l (l - 1) l (l + 1)(l + 2) + Sigma R^2 (l - 1)(l + 2), with s_l
+    the mesh's stiffness factor (`stiffness`, sphere_stiffness; 1 without it) and the factor of a
+    fixed tau of _compare. K_l is linear in (kappa, Sigma): a weighted least-squares fit of
+    k_BT / shape_mode_l, the weights from the batch-means errors, iterated on the small step factor.
+    Returns kappa and Sigma with their standard errors and the residual of each degree."""
+    columns = _statistics(path)
+    rows, n, tau, _ = _sampled(columns, skip, batches)
+    R = (3 * columns['volume'][rows].mean() / (4 * math.pi)) ** (1 / 3)
+    measured = np.array([columns[f'shape_mode_{l}'][rows].mean() for l in degrees])
+    errors = np.array([batch_error(columns[f'shape_mode_{l}'][rows], batches) for l in degrees])
+    factor_of = {l: (stiffness or {}).get(l, 1.0) for l in degrees}
+    bending = np.array([factor_of[l] * (l - 1) * l * (l + 1) * (l + 2) for l in degrees], dtype=float)
+    weight = np.array([R**2 * (l - 1) * (l + 2) for l in degrees], dtype=float)
+    drag = np.array([R**4 * (1 + 4 / (l * (l + 1))) for l in degrees])
+    kappa, sigma, step = 1.0, 0.0, np.ones(len(degrees))
+    for _ in range(20):
+        # y_l = k_BT / (shape_mode_l step_l) = kappa bending_l + Sigma weight_l, step_l = 1 / (1 + (lambda_b - mu) tau / 2)
+        y = kT / (measured * step)
+        dy = y * errors / measured
+        A = np.stack([bending, weight], axis=1) / dy[:, None]
+        (kappa, sigma), *_ = np.linalg.lstsq(A, y / dy, rcond=None)
+        step = 1 / (1 + mobility * (kappa * bending - sigma * weight) * tau / (2 * drag))
+    covariance = np.linalg.inv(A.T @ A)
+    expected = kT * step / (kappa * bending + sigma * weight)
+    return {'steps': n, 'tau': float(tau), 'R': float(R), 'degrees': list(degrees),
+            'kappa': float(kappa), 'kappa_error': float(math.sqrt(covariance[0, 0])),
+            'sigma': float(sigma), 'sigma_error': float(math.sqrt(covariance[1, 1])),
+            'stiffness': {str(l): float(factor_of[l]) for l in degrees},
+            'modes': [{'l': l, 'measured': float(m), 'error': float(e), 'fitted': float(x),
+                       'step_factor': float(f)} for l, m, e, x, f in zip(degrees, measured, errors, expected, step)]}
 
 
 def table(result):

@@ -26,12 +26,19 @@ namespace Membrane
     // and so change the energy by about integral gamma (a_ref - a^m) even in the shortest
     // step: a step cut short to land on the end time, or retried after a rejection, was then
     // rejected at any tau and the run stalled.
+    // At a temperature no energy test applies, and the reason for T_a > tau there is the variation
+    // of the defect (restored whole in every step, its cell-scale part grew on the two-phase patch
+    // at kappa/10: docs/model.md, physical temperature). Its uniform part, the relative defect u of
+    // the whole membrane (the area the noise adds), is then restored whole: the target is
+    // (1 - theta) (1 + u) a^m + theta a_ref, whose sum is the total reference area for any theta.
     Vector target = areas;
     if (parameters.shape_options.correct_area)
       {
         const double relaxation = parameters.shape_options.area_relaxation_time;
         const double theta      = relaxation > 0 ? std::min(1.0, tau / relaxation) : 1.0;
-        target *= 1 - theta;
+        const double uniform =
+          parameters.thermal.active() && theta < 1 ? reference_areas.l1_norm() / areas.l1_norm() - 1 : 0;
+        target *= (1 - theta) * (1 + uniform);
         target.add(theta, reference_areas);
       }
     return target;

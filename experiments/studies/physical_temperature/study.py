@@ -81,7 +81,31 @@ def run(name, exe):
     print(name, "exit", code, flush=True)
 
 
-def analyze(plot):
+SPECTRUM_SKIP = 1000  # steps: 14 relaxation times of l = 6, 1.4 of l = 2 (1 / lambda_2 = 0.07)
+DEGREES = (2, 3, 4, 5, 6)
+_stiffness = {}
+
+
+def cells_of(mesh):
+    return CELLS[mesh][1]
+
+
+def spectrum(name, cells, kT, exe):
+    """Milner and Safran fitted to the run's shape_mode_2..6 (membrane_flow.spectra.sphere_fit): kappa
+    and Sigma, once with the continuum's bending stiffness of each mode and once with this mesh's
+    (spectra.sphere_stiffness: the discrete sphere's bending energy of a small P_l displacement). The
+    input kappa is 1."""
+    from membrane_flow import spectra
+    if cells not in _stiffness:
+        _stiffness[cells] = spectra.sphere_stiffness(exe, PRM["vesicle"], [f"Mesh/Cells per side={cells}"],
+                                                     degrees=DEGREES)
+    path = f"{OUT}/{name}"
+    continuum = spectra.sphere_fit(path, kT, skip=SPECTRUM_SKIP, degrees=DEGREES)
+    mesh = spectra.sphere_fit(path, kT, skip=SPECTRUM_SKIP, degrees=DEGREES, stiffness=_stiffness[cells])
+    return {"skip_steps": SPECTRUM_SKIP, "continuum": continuum, "mesh_stiffness": mesh}
+
+
+def analyze(plot, exe):
     # Runs measured before (another session, another code version: each entry names its own)
     # are kept until their directory holds a finished run again.
     try:
@@ -91,8 +115,8 @@ def analyze(plot):
         kept = {}
     results = {"steps": STEPS, "tau": TAU, "settings": ALE, "limits": LIMITS, "runs": kept}
     print("| run | k_BT | steps | failed | smallest corner sine | largest area error | mean area error | "
-          "mass drift | s/step |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "mean area drift | mass drift | s/step | kappa fitted (continuum) | kappa fitted (mesh) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     series = {}
     for name, (mesh, divisor) in RUNS.items():
         if not finished(name):
@@ -115,20 +139,25 @@ def analyze(plot):
             "steps_above_area_limit": int((c["area_error"] > LIMITS["area_error"]).sum()),
             "largest_mass_drift": float(np.abs(c["mass_drift"]).max()),
             "area_drift": float(c["area_drift"][-1]),
+            "mean_area_drift": float(c["area_drift"][1:].mean()),
             "wall_seconds_per_step": float(summary["wall_seconds"] / max(1, steps)),
             "area_error_per_tenth": [float(c["area_error"][b].max()) for b in blocks if len(b)],
             "code_version": summary.get("code_version"),
             # the entries that decide the local area error (entries of older runs lack them)
             "shape_settings": {k: parameters[f"Shape/{k}"] for k in SHAPE_ENTRIES},
         }
+        if kind == "vesicle":
+            r["spectrum"] = spectrum(name, cells_of(mesh), KAPPA[kind] / divisor, exe)
         r["within_limits"] = bool(r["complete"] and r["failed_steps"] == 0
                                   and r["smallest_corner_sine"] >= LIMITS["min_corner_sine"]
                                   and r["largest_area_error"] <= LIMITS["area_error"])
         results["runs"][name] = r
         series[name] = (c["time"], c["area_error"], c["min_corner_sine"])
+        fits = ["%.3f +- %.3f" % (r["spectrum"][k]["kappa"], r["spectrum"][k]["kappa_error"]) if "spectrum" in r
+                else "-" for k in ("continuum", "mesh_stiffness")]
         print(f"| {name} | {r['k_BT']:g} | {steps} | {r['failed_steps']} | {r['smallest_corner_sine']:.3f} | "
-              f"{r['largest_area_error']:.2e} | {r['mean_area_error']:.2e} | {r['largest_mass_drift']:.1e} | "
-              f"{r['wall_seconds_per_step']:.2f} |")
+              f"{r['largest_area_error']:.2e} | {r['mean_area_error']:.2e} | {r['mean_area_drift']:.2e} | "
+              f"{r['largest_mass_drift']:.1e} | {r['wall_seconds_per_step']:.2f} | {fits[0]} | {fits[1]} |")
     for path in (os.path.join(HERE, "results.json"), os.path.join(ROOT, "docs", "data", "physical_temperature.json")):
         with open(path + ".tmp", "w") as f:
             json.dump(results, f, indent=1)
@@ -168,4 +197,4 @@ if __name__ == "__main__":
         with ThreadPoolExecutor(args.jobs) as pool:
             list(pool.map(lambda n: run(n, args.exe), args.only))
     else:
-        analyze(args.plot)
+        analyze(args.plot, args.exe)
