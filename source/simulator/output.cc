@@ -64,6 +64,7 @@ namespace Membrane
     stats.set("rejected_steps", rejected_steps);
     stats.set("grid_control_skipped", grid_control_skipped);
     stats.set("mesh_motion_energy", mesh_motion_energy);
+    stats.set("dissipation", dissipation);
     stats.set("area_error", area_error);
     stats.set("shape_mass_correction", shape_mass_correction);
     stats.set("error_estimate", error_estimate);

@@ -115,6 +115,9 @@ namespace Membrane
     irreducible_error_steps += local_error_irreducible;
     pressure_work += step_pressure_work;
     compare_with_old_mesh(trial);
+    // What the physical step dissipated: F^m and the work of the constraints, less the energy of
+    // the shape it gave (the energy the step control judges, step_acceptance.cc).
+    dissipation = energy_before + step_pressure_work + step_area_work - physical_energy;
     record_statistics(trial);
     const double change =
       std::abs(energy.total() - energy_before - step_pressure_work) / std::max(std::abs(energy_before), 1e-300);
@@ -153,9 +156,7 @@ namespace Membrane
     // discretization error, and on a fine mesh the fixed weight per step takes more steps to bring
     // the mesh to its fixed point than the shape takes to settle; with the Lagrangian mesh the
     // physical step is the whole step (physical_energy = F^{m+1}, no area work).
-    const double physical_change =
-      std::abs(physical_energy - energy_before - step_pressure_work - step_area_work) /
-      std::max(std::abs(energy_before), 1e-300);
+    const double physical_change = std::abs(dissipation) / std::max(std::abs(energy_before), 1e-300);
     if (parameters.equilibrium_rate > 0 && physical_change / trial < parameters.equilibrium_rate)
       {
         if (plateau_since < 0)
