@@ -102,7 +102,19 @@ def spectrum(name, cells, kT, exe):
     path = f"{OUT}/{name}"
     continuum = spectra.sphere_fit(path, kT, skip=SPECTRUM_SKIP, degrees=DEGREES)
     mesh = spectra.sphere_fit(path, kT, skip=SPECTRUM_SKIP, degrees=DEGREES, stiffness=_stiffness[cells])
-    return {"skip_steps": SPECTRUM_SKIP, "continuum": continuum, "mesh_stiffness": mesh}
+    # Each mode against the input (kappa = 1, Sigma = 0) with the mesh's stiffness and the factor of
+    # the fixed tau: the measured / expected ratio that the two-parameter fit trades against Sigma.
+    R, tau = mesh["R"], mesh["tau"]
+    against_input = {}
+    for m in mesh["modes"]:
+        l = m["l"]
+        bending = _stiffness[cells][l] * (l - 1) * l * (l + 1) * (l + 2)
+        step = 1 / (1 + bending * tau / (2 * R**4 * (1 + 4 / (l * (l + 1)))))
+        expected = kT * step / bending
+        against_input[str(l)] = {"expected": expected, "ratio": m["measured"] / expected,
+                                 "ratio_error": m["error"] / expected}
+    return {"skip_steps": SPECTRUM_SKIP, "continuum": continuum, "mesh_stiffness": mesh,
+            "against_input_kappa": against_input}
 
 
 def analyze(plot, exe):
