@@ -193,30 +193,42 @@ def sphere_spectrum(path, kT, kappa=1.0, mobility=1.0, skip=500, batches=20, sta
 def sphere_fit(path, kT, mobility=1.0, skip=500, batches=20, degrees=(2, 3, 4, 5, 6), stiffness=None):
     """The two-parameter fit of Milner and Safran to a closed run's spectrum: kappa and the
     tension Sigma such that shape_mode_l = k_BT / (K_l (1 + (lambda_b - mu) tau / 2)) for the
-    given degrees, K_l = kappa s_l (l - 1) l (l + 1)(l + 2) + Sigma R^2 (l - 1)(l + 2), with s_l
-    the mesh's stiffness factor (`stiffness`, sphere_stiffness; 1 without it) and the factor of a
-    fixed tau of _compare. K_l is linear in (kappa, Sigma): a weighted least-squares fit of
-    k_BT / shape_mode_l, the weights from the batch-means errors, iterated on the small step factor.
-    Returns kappa and Sigma with their standard errors and the residual of each degree."""
+    given degrees, with K_l = kappa b_l + Sigma w_l, b_l = s_l (l - 1) l (l + 1)(l + 2) (s_l the mesh's
+    stiffness factor, `stiffness` from sphere_stiffness; 1 without it), w_l = R^2 (l - 1)(l + 2), and
+    the factor of a fixed tau of _compare, (lambda_b - mu) = L_X (kappa b_l - Sigma w_l) / d_l with the
+    drag d_l of sphere_rates. Then
+        k_BT / shape_mode_l = kappa b_l + Sigma w_l + L_X tau (kappa^2 b_l^2 - Sigma^2 w_l^2) / (2 d_l),
+    fitted by Gauss-Newton (from the solution without the step factor), each degree weighted by the
+    batch-means error of its mean. Returns kappa and Sigma with their standard errors, and per degree
+    the measured and the fitted value."""
     columns = _statistics(path)
     rows, n, tau, _ = _sampled(columns, skip, batches)
     R = (3 * columns['volume'][rows].mean() / (4 * math.pi)) ** (1 / 3)
     measured = np.array([columns[f'shape_mode_{l}'][rows].mean() for l in degrees])
     errors = np.array([batch_error(columns[f'shape_mode_{l}'][rows], batches) for l in degrees])
     factor_of = {l: (stiffness or {}).get(l, 1.0) for l in degrees}
-    bending = np.array([factor_of[l] * (l - 1) * l * (l + 1) * (l + 2) for l in degrees], dtype=float)
-    weight = np.array([R**2 * (l - 1) * (l + 2) for l in degrees], dtype=float)
-    drag = np.array([R**4 * (1 + 4 / (l * (l + 1))) for l in degrees])
-    kappa, sigma, step = 1.0, 0.0, np.ones(len(degrees))
-    for _ in range(20):
-        # y_l = k_BT / (shape_mode_l step_l) = kappa bending_l + Sigma weight_l, step_l = 1 / (1 + (lambda_b - mu) tau / 2)
-        y = kT / (measured * step)
-        dy = y * errors / measured
-        A = np.stack([bending, weight], axis=1) / dy[:, None]
-        (kappa, sigma), *_ = np.linalg.lstsq(A, y / dy, rcond=None)
-        step = 1 / (1 + mobility * (kappa * bending - sigma * weight) * tau / (2 * drag))
-    covariance = np.linalg.inv(A.T @ A)
-    expected = kT * step / (kappa * bending + sigma * weight)
+    b = np.array([factor_of[l] * (l - 1) * l * (l + 1) * (l + 2) for l in degrees], dtype=float)
+    w = np.array([R**2 * (l - 1) * (l + 2) for l in degrees], dtype=float)
+    c = mobility * tau / (2 * np.array([R**4 * (1 + 4 / (l * (l + 1))) for l in degrees]))
+    y = kT / measured
+    dy = y * errors / measured
+
+    def model(p):
+        return p[0] * b + p[1] * w + c * (p[0]**2 * b**2 - p[1]**2 * w**2)
+
+    def jacobian(p):
+        return np.stack([b + 2 * c * p[0] * b**2, w - 2 * c * p[1] * w**2], axis=1) / dy[:, None]
+
+    p = np.linalg.lstsq(np.stack([b, w], axis=1) / dy[:, None], y / dy, rcond=None)[0]
+    for _ in range(50):
+        delta = np.linalg.lstsq(jacobian(p), (y - model(p)) / dy, rcond=None)[0]
+        p = p + delta
+        if np.all(np.abs(delta) <= 1e-12 * (np.abs(p) + 1e-300)):
+            break
+    covariance = np.linalg.inv(jacobian(p).T @ jacobian(p))
+    kappa, sigma = p
+    step = 1 / (1 + c * (kappa * b - sigma * w))
+    expected = kT * step / (kappa * b + sigma * w)
     return {'steps': n, 'tau': float(tau), 'R': float(R), 'degrees': list(degrees),
             'kappa': float(kappa), 'kappa_error': float(math.sqrt(covariance[0, 0])),
             'sigma': float(sigma), 'sigma_error': float(math.sqrt(covariance[1, 1])),
