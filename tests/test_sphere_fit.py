@@ -7,8 +7,11 @@ k_BT / (K_l (1 + (lambda_b - mu) tau / 2)) times 1 +- 2 % of noise, K_l = kappa 
 tau = 1e-3 (step factors 0.99 to 0.48, so that a fit without them, or with their sign
 wrong, misses kappa by far more than its error). The fit with the same stiffness must return
 kappa and Sigma within three standard errors and within 1 % and 5 %; the fit with the
-continuum's stiffness must return the kappa that absorbs s_l (larger by 7 to 13 %).
+continuum's stiffness must return the kappa that absorbs s_l (larger by 7 to 13 %), and
+`python3 -m membrane_flow spectrum sphere RUN --fit` prints it.
 Usage: test_sphere_fit.py <scratch directory>"""
+import contextlib
+import io
 import math
 import os
 import sys
@@ -55,4 +58,10 @@ check(worst <= 1e-3, f"the step factors ({steps[0]:.3f} to {steps[-1]:.3f}) are 
 continuum = spectra.sphere_fit(path, kT, skip=0, batches=20, degrees=degrees)
 check(1.07 <= continuum['kappa'] / kappa <= 1.13,
       f"with the continuum's stiffness kappa reads {continuum['kappa'] / kappa:.3f} x the input (the s_l it absorbs)")
+# The command line prints the same fit.
+out = io.StringIO()
+with contextlib.redirect_stdout(out):
+    code = spectra.main(['sphere', path, '--kT', str(kT), '--skip', '0', '--fit'])
+check(code == 0 and f"kappa {continuum['kappa']:.4f}" in out.getvalue(),
+      f"spectrum sphere --fit prints kappa {continuum['kappa']:.4f} (exit {code})")
 sys.exit(check.exit_code())

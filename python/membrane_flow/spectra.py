@@ -33,6 +33,7 @@ Error bars are batch means over `batches` consecutive blocks of the sampled step
 
     python3 -m membrane_flow spectrum patch results/thermal-patch --kT 1e-4
     python3 -m membrane_flow spectrum sphere results/quasi_spherical/n8 --kT 1e-4 --static results/.../n8_static
+    python3 -m membrane_flow spectrum sphere results/studies/physical_temperature/vesicle16-kT20 --kT 0.05 --fit
 """
 import argparse
 import math
@@ -267,6 +268,8 @@ def main(argv=None):
     parser.add_argument('--skip', type=int, help='steps left out at the start (default 200 patch, 500 sphere)')
     parser.add_argument('--batches', type=int, default=20)
     parser.add_argument('--static', help='sphere: the same run at k_BT = 0, whose mean shape is subtracted')
+    parser.add_argument('--fit', action='store_true',
+                        help='sphere: fit kappa and Sigma to shape_mode_2..6 (sphere_fit, the continuum\'s stiffness)')
     args = parser.parse_args(argv)
     for name, value, low in (('--kT', args.kT, 0), ('--kappa', args.kappa, 0), ('--mobility', args.mobility, 0)):
         if not value > low:  # also NaN
@@ -279,6 +282,14 @@ def main(argv=None):
         if args.surface == 'patch':
             result = patch_spectrum(args.run, args.kT, args.kappa, args.mobility,
                                     200 if args.skip is None else args.skip, args.batches)
+        elif args.fit:
+            fit = sphere_fit(args.run, args.kT, args.mobility, 500 if args.skip is None else args.skip, args.batches)
+            print(f"{fit['steps']} steps sampled, tau {fit['tau']:g}, R {fit['R']:.4f}: kappa {fit['kappa']:.4f} +- "
+                  f"{fit['kappa_error']:.4f}, Sigma {fit['sigma']:.3f} +- {fit['sigma_error']:.3f}")
+            for m in fit['modes']:
+                print(f"l = {m['l']}: {m['measured']:.4g} +- {m['error']:.2g}, fitted {m['fitted']:.4g} "
+                      f"(step factor {m['step_factor']:.3f})")
+            return 0
         else:
             result = sphere_spectrum(args.run, args.kT, args.kappa, args.mobility,
                                      500 if args.skip is None else args.skip, args.batches, args.static)
