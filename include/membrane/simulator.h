@@ -298,8 +298,9 @@ namespace Membrane
     /// The energy the step control judges: F^{m+1}, or with Mesh motion = ale F(X~, phi~) of the
     /// physical step; mesh_motion_energy = F^{m+1} - F(X~, phi~) (0 for the Lagrangian mesh).
     double physical_energy = 0, mesh_motion_energy = 0;
-    /// The last accepted step's F^m + p dV + area work - physical_energy (>= 0 at k_BT = 0 up to
-    /// Time stepping/Energy tolerance): its rate is what the equilibrium stop judges.
+    /// What the last judged step dissipated, F^m + p dV + area work - physical_energy (>= 0 at
+    /// k_BT = 0 up to Time stepping/Energy tolerance; set by judge_step): its rate is what the
+    /// equilibrium stop judges.
     double dissipation = 0;
     /// Mesh motion = ale at k_BT > 0: the Helmholtz split of the trial step's tangential noise
     /// (physics/tangential_noise.h): chi for the shape step, psi for the lipids' transport.

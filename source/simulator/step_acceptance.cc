@@ -32,6 +32,7 @@ namespace Membrane
     // surface: the next step restores it against the surface pressure, work -(gamma, a_ref - a)
     // that the step control counts as it counts p dV (step_area_work; 0 with the Lagrangian mesh).
     const double rise = physical_energy - energy_before - step_pressure_work - step_area_work;
+    dissipation       = -rise; // of the step the loop accepts, for its statistics and equilibrium stop
     // At a temperature the energy fluctuates: a rise is no sign of a failed step.
     if (!parameters.thermal.active() && rise > parameters.energy_tolerance * std::max(std::abs(energy_before), 1e-300))
       return {"energy_rise", "the energy would rise by " + format(rise)};

@@ -115,9 +115,6 @@ namespace Membrane
     irreducible_error_steps += local_error_irreducible;
     pressure_work += step_pressure_work;
     compare_with_old_mesh(trial);
-    // What the physical step dissipated: F^m and the work of the constraints, less the energy of
-    // the shape it gave (the energy the step control judges, step_acceptance.cc).
-    dissipation = energy_before + step_pressure_work + step_area_work - physical_energy;
     record_statistics(trial);
     const double change =
       std::abs(energy.total() - energy_before - step_pressure_work) / std::max(std::abs(energy_before), 1e-300);
