@@ -17,9 +17,12 @@ stationary <x^2> against k_BT / (kappa q^4 + Sigma q^2) times the factor of a fi
 If the plain mean falls short here too, the shortfall belongs to the constrained dynamics, not to
 the finite elements or the noise of the simulator (docs/fluctuations.md).
 
-Usage: modes.py   (about a minute; numpy only)
+Usage: modes.py            (about a minute; numpy only)
+       modes.py physical   (k_BT = 0.05 = kappa/20, tau = 1e-4 and 2e-5, the excess areas of the
+                            ALE runs of README.md, "At a physical temperature"; a few seconds)
 """
 import math
+import sys
 
 import numpy as np
 
@@ -62,7 +65,23 @@ def run(tau, excess, cells=16, kT=1e-4, kappa=1.0, mobility=1.0, steps=30000, sk
     return gammas.mean(), gammas.std(), unreachable / (steps - 0), rows
 
 
+def physical():
+    # The excess area of the initial cosine mode a cos(2 pi (2 u1 + u2)): (1/2) <|grad z|^2> = 5 pi^2 a^2.
+    print('| tau | a | excess area | <gamma> | shell | ratio, mode-weighted | Sigma_q |')
+    print('|---|---|---|---|---|---|---|')
+    for tau in (1e-4, 2e-5):
+        for a in (0.0135, 0.0115, 0.0095, 0.008, 0.005):
+            excess = 5 * math.pi**2 * a * a
+            mean, _, _, rows = run(tau, excess, kT=0.05, steps=30000, skip=4000)
+            for s, (_, (weighted_sigma, weighted)) in enumerate(rows):
+                print(f'| {tau:g} | {a:g} | {excess:.2e} | {mean:.1f} | |k|^2 = {s + 1} | {weighted:.3f} | '
+                      f'{weighted_sigma:.1f} |')
+
+
 if __name__ == '__main__':
+    if sys.argv[1:] == ['physical']:
+        physical()
+        sys.exit(0)
     print('| tau | excess area | <gamma> | std of gamma | steps without a root | shell | '
           'ratio, plain mean | Sigma_q | ratio, mode-weighted |')
     print('|---|---|---|---|---|---|---|---|---|')
