@@ -72,16 +72,13 @@ def physical():
     for tau in (1e-4, 2e-5):
         for a in (0.0135, 0.0115, 0.0095, 0.008, 0.005):
             excess = 5 * math.pi**2 * a * a
-            mean, _, _, rows = run(tau, excess, kT=0.05, steps=30000, skip=4000)
+            mean, _, _, rows = run(tau, excess, kT=0.05)
             for s, (_, (weighted_sigma, weighted)) in enumerate(rows):
                 print(f'| {tau:g} | {a:g} | {excess:.2e} | {mean:.1f} | |k|^2 = {s + 1} | {weighted:.3f} | '
                       f'{weighted_sigma:.1f} |')
 
 
-if __name__ == '__main__':
-    if sys.argv[1:] == ['physical']:
-        physical()
-        sys.exit(0)
+def paper_temperature():
     print('| tau | excess area | <gamma> | std of gamma | steps without a root | shell | '
           'ratio, plain mean | Sigma_q | ratio, mode-weighted |')
     print('|---|---|---|---|---|---|---|---|---|')
@@ -90,3 +87,7 @@ if __name__ == '__main__':
         for s, ((_, plain), (weighted_sigma, weighted)) in enumerate(rows):
             print(f'| {tau:g} | {excess:g} | {mean:.1f} | {spread:.1f} | {unreachable:.0%} | |k|^2 = {s + 1} | '
                   f'{plain:.3f} | {weighted_sigma:.1f} | {weighted:.3f} |')
+
+
+if __name__ == '__main__':
+    physical() if sys.argv[1:] == ['physical'] else paper_temperature()
