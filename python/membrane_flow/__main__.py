@@ -32,6 +32,7 @@ COMMANDS = {
     'axisymmetric-vesicle': ('studies.axisymmetric_vesicle',
                              'reference shapes of revolution (sphere, spheroid, prolate branch)'),
     'spectrum': ('spectra', 'a thermal run\'s stationary height or shape spectrum against equilibrium'),
+    'capillary': ('capillary', 'the capillary-wave spectrum of a phase boundary against the line tension'),
     'sharp-interface': ('sharp_interface',
                         'the sharp-interface limit of 7.3 (experiments/studies/sharp_interface)'),
     # the generated pages of docs/

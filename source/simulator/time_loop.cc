@@ -41,6 +41,14 @@ namespace Membrane
       pcout << "Warning: with <Time stepping/Accuracy tolerance> > 0 and <Shape/Grid control rate> = 0 the mesh is "
                "smoothed once per step whatever tau, so the result depends on the number of steps and does not "
                "converge as the tolerance shrinks; set <Shape/Grid control rate> (e.g. 10).\n";
+    // The stabilized step adds s (phi - phi^m) to the potential with no noise to match it, which cools
+    // the slow modes of phi at a fixed tau (experiments/studies/capillary_waves: a phase boundary's
+    // modes at tau = 2e-5 to half their variance, and less at smaller tau).
+    if (parameters.thermal.active() && parameters.material.phase_mobility > 0 &&
+        parameters.cahn_hilliard.scheme == "stabilized")
+      pcout << "Warning: at <Material/Temperature> > 0 the stabilized Cahn-Hilliard scheme lowers the stationary "
+               "variance of phi's slow modes at a fixed tau (its stabilization damps every step without noise to "
+               "match); for thermal statistics of phi set <Cahn-Hilliard/Scheme> = linearized.\n";
     write_run_info();
     pcout << topology->name() << ": "
           << triangulation.n_global_active_cells() << " cells, "
