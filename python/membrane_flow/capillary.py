@@ -31,7 +31,8 @@ then 3 w F^2): |phi_(1,n)|^2 is divided by F^2 in the stripe and the bulk run al
 The time step. A boundary mode relaxes, in the thin-interface limit of the Cahn-Hilliard flow with
 the mobility L_phi on both sides, at the rate Gamma_n = L_phi lambda q^3 / 2, and a fixed tau lowers
 its stationary variance (the table gives Gamma_n tau as a guide; the bias measured with the
-linearized scheme is about twice 1 / (1 + Gamma_n tau / 2)'s, experiments/studies/capillary_waves).
+linearized scheme exceeds the backward-Euler factor 1 / (1 + Gamma_n tau / 2), by up to 2x at
+Gamma_n tau = 0.6, experiments/studies/capillary_waves).
 The stabilized scheme (Cahn-Hilliard/Scheme, the default) lowers it far more, by a factor of about
 1 / (1 + c tau L_phi sigma q^2) with c of a few: it damps each step by its s (phi - phi^m) without
 noise to match. Use the linearized scheme and compare the modes whose Gamma_n tau is small.

@@ -1,11 +1,12 @@
 #!/bin/sh
 # Capillary waves of a straight phase boundary (README.md beside this script).
-# 1. Two stripe runs of 8e4 steps (tau = 5e-6, the linearized scheme) with different noise seeds
-#    and one bulk run of 2e4 steps (the same parameters in one phase), two at a time on two cores
-#    (about 45 minutes).
+# 1. Two stripe runs of 6e4 and 5e4 steps (tau = 5e-6, the linearized scheme) with different
+#    noise seeds and one bulk run of 2e4 steps (the same parameters in one phase), two at a time on
+#    two cores (about an hour).
 # 2. The time step and the scheme: 5e3 stripe steps and 2e3 bulk steps each at tau = 2e-5 with
 #    the linearized scheme, and at 2e-5 and 5e-6 with the stabilized one (about 5 minutes).
-# Then the analysis, which writes results.json here and docs/data/capillary_waves.json.
+# Then the analysis, which writes results.json here and docs/data/capillary_waves.json, and the
+# figure docs/images/capillary_waves.png (figure.py).
 # Usage: experiments/studies/capillary_waves/run.sh [build/membrane-flow]
 set -e
 exe=${1:-build/membrane-flow}
@@ -17,9 +18,9 @@ run() { # name settings...
   HWLOC_COMPONENTS=-gl OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 nice "$exe" --quiet --overwrite "$@" \
     --set "Output/Directory=$out/$name" "$here/stripe.prm"
 }
-run stripe1 --set "Material/Noise seed=1" &
+run stripe1 --set "Material/Noise seed=1" --set "Time stepping/Maximum steps=60000" &
 { run bulk --set "Initial phase/Type=uniform" --set "Material/Noise seed=2" --set "Time stepping/Maximum steps=20000"
-  run stripe2 --set "Material/Noise seed=3"; } &
+  run stripe2 --set "Material/Noise seed=3" --set "Time stepping/Maximum steps=50000"; } &
 wait
 short() { # name scheme tau output-interval (5 tau)
   run "$1" --set "Cahn-Hilliard/Scheme=$2" --set "Time stepping/Time step=$3" --set "Output/Interval=$4" \
@@ -50,3 +51,4 @@ with open(target + '.part', 'w') as f:
 os.replace(target + '.part', target)
 PY
 cp "$here/results.json" docs/data/capillary_waves.json
+/usr/bin/python3 "$here/figure.py"
