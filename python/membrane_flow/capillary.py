@@ -95,8 +95,8 @@ def mode_powers(run, modes, skip, width):
 
 
 def _pooled(runs, modes, skip, width, batches):
-    """The mode_powers of several runs of equal length: the mean over all snapshots and the error of
-    the batch means, `batches` per run."""
+    """The mode_powers of several runs: the mean of their batch means, `batches` per run (so the runs
+    weigh alike whatever their length), with its standard error."""
     means, total, spans = [], 0, []
     for run in runs:
         times, series = mode_powers(run, modes, skip, width)
