@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """membrane_flow.capillary on synthetic snapshots whose boundary spectrum is known.
 
-Two stripe runs and one bulk run are written as VTU series on a 32 x 32 vertex grid of the unit
-patch: phi = tanh((x - x_L(y)) / w) - tanh((x - x_R(y)) / w) - 1 with w = 4 xi / 3 (the profile of
+Two stripe runs and one bulk run are written as VTU series on 32 x 32 cells of the unit patch
+(tests/synthetic_vtu.py: each vertex once per cell, in single precision, as the simulator writes
+them): phi = tanh((x - x_L(y)) / w) - tanh((x - x_R(y)) / w) - 1 with w = 4 xi / 3 (the profile of
 MODEL.md's f), x_L = 1/4 + u_L, x_R = 3/4 + u_R, and u_L, u_R independent Gaussian boundaries
 with <|u_n|^2> = k_BT / (lambda q^2) for n = 1..8, lambda = 20; every vertex gets white noise of
 standard deviation 0.14 (the bulk run has no boundary); in the stripe runs its part along each
@@ -19,13 +20,10 @@ import os
 import sys
 
 import numpy as np
-from vtkmodules.util.numpy_support import numpy_to_vtk
-from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import VTK_QUAD, vtkUnstructuredGrid
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridWriter
 
 from membrane_flow import capillary
 from checks import NARROW, Checks  # tests/checks.py, next to this script
+from synthetic_vtu import write_pvd, write_vtu  # tests/synthetic_vtu.py
 
 scratch = sys.argv[1]
 check = Checks(*NARROW)
@@ -55,8 +53,6 @@ def write_run(name, stripe):
                 f'  set Transition length = {xi}\n  set Phase mobility = 0.2\nend\n'
                 f'subsection Mesh\n  set Cells per side = {N}\nend\n'
                 f'subsection Time stepping\n  set Time step = 1e-5\nend\n')
-    points = vtkPoints()
-    points.SetData(numpy_to_vtk(np.column_stack([x, y, np.zeros_like(x)]), deep=True))
     entries = []
     for k in range(snapshots):
         if stripe:
@@ -70,23 +66,13 @@ def write_run(name, stripe):
             for centre in (0.25, 0.75):
                 mode = 1 / np.cosh((np.arange(N) / N - centre) / width) ** 2
                 eta -= np.outer(mode, mode @ eta) / (mode @ mode)
-        phi = phi + eta.ravel()
-        grid = vtkUnstructuredGrid()
-        grid.SetPoints(points)
-        for i in range(N - 1):
-            for j in range(N - 1):
-                grid.InsertNextCell(VTK_QUAD, 4, [i * N + j, (i + 1) * N + j, (i + 1) * N + j + 1, i * N + j + 1])
-        array = numpy_to_vtk(phi, deep=True)
-        array.SetName('phi')
-        grid.GetPointData().AddArray(array)
-        writer = vtkXMLUnstructuredGridWriter()
-        writer.SetFileName(os.path.join(run, f'surface-{k:06d}.vtu'))
-        writer.SetInputData(grid)
-        writer.Write()
-        entries.append(f'<DataSet timestep="{0.01 * k}" group="" part="0" file="surface-{k:06d}.vtu"/>')
-    with open(os.path.join(run, 'surface.pvd'), 'w') as f:
-        f.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n<Collection>\n' +
-                '\n'.join(entries) + '\n</Collection>\n</VTKFile>\n')
+        table = (phi + eta.ravel()).reshape(N, N)
+        # Each vertex once per cell, as the simulator writes it; x = 1 and y = 1 are x = 0 and y = 0.
+        name = f'surface-{k:06d}.vtu'
+        write_vtu(os.path.join(run, name), N, lambda u, v: np.zeros_like(u),
+                  lambda u, v: table[np.rint(u * N).astype(int) % N, np.rint(v * N).astype(int) % N], True, 0.01 * k)
+        entries.append((0.01 * k, name))
+    write_pvd(os.path.join(run, 'surface.pvd'), entries)
     return run
 
 

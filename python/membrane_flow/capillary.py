@@ -53,7 +53,7 @@ import sys
 import numpy as np
 
 from .run import load_parameters, load_snapshots, read_vtu
-from .spectra import batch_error
+from .spectra import batch_means
 
 
 def vertex_values(points, phi):
@@ -102,7 +102,7 @@ def _pooled(runs, modes, skip, width, batches):
         times, series = mode_powers(run, modes, skip, width)
         if len(times) < 2 * batches:
             raise ValueError(f'{run}: {len(times)} snapshots after t = {skip:g}, too few for {batches} batches')
-        means += [b.mean(axis=0) for b in np.array_split(series, batches)]
+        means += list(batch_means(series, batches))
         total += len(times)
         spans.append(float(times[-1] - times[0]))
     means = np.array(means)

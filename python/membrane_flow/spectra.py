@@ -53,8 +53,9 @@ def _statistics(path):
 
 
 def batch_means(series, batches):
-    """The means of `batches` consecutive blocks of `series` (np.array_split: sizes differ by at most one)."""
-    return np.array([b.mean() for b in np.array_split(series, batches)])
+    """The means of `batches` consecutive blocks of `series` along its first axis (np.array_split:
+    sizes differ by at most one)."""
+    return np.array([b.mean(axis=0) for b in np.array_split(series, batches)])
 
 
 def batch_error(series, batches):
